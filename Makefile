@@ -1,0 +1,34 @@
+# Two commands a fresh machine (python3 + pip) needs: `make demo` and `make test`.
+PYTHON ?= python3
+VENV   ?= .venv
+BIN     = $(VENV)/bin
+
+.PHONY: demo test install clean
+
+$(BIN)/python:
+	$(PYTHON) -m venv $(VENV)
+	$(BIN)/python -m pip install -q --upgrade pip
+
+# Reinstall when pyproject.toml changes.
+$(VENV)/.installed: pyproject.toml | $(BIN)/python
+	$(BIN)/python -m pip install -q -e .
+	touch $@
+
+$(VENV)/.installed-test: pyproject.toml | $(BIN)/python
+	$(BIN)/python -m pip install -q -e '.[test]'
+	touch $@ $(VENV)/.installed
+
+install: $(VENV)/.installed
+
+demo: $(VENV)/.installed
+	$(BIN)/mdcalc hoist cases/hoist/crane.toml
+
+test: $(VENV)/.installed-test
+	$(BIN)/ruff check mdcalc tests
+	$(BIN)/ruff format --check mdcalc tests
+	$(BIN)/mypy mdcalc
+	$(BIN)/pytest
+	$(BIN)/mdcalc check cases
+
+clean:
+	rm -rf $(VENV) build *.egg-info .pytest_cache .mypy_cache .ruff_cache

@@ -1,0 +1,252 @@
+"""Read case files (tomllib), validate them (pydantic), turn errors into messages.
+
+All file I/O of case files lives here. Messages follow the
+``file:line: error: path: message`` form that editors and CI annotators read.
+"""
+
+from __future__ import annotations
+
+import difflib
+import os
+import re
+import tempfile
+import tomllib
+from pathlib import Path
+from typing import Any, TypeVar
+
+from pydantic import BaseModel, ValidationError
+
+from mdcalc.errors import InputError, Problem
+
+M = TypeVar("M", bound=BaseModel)
+
+_TOML_POSITION = re.compile(r"\(at line (\d+), column (\d+)\)")
+_TOML_EOF = re.compile(r"\(at end of document\)")
+_HEADER = re.compile(r"^\s*(\[\[?)\s*([^\]]+?)\s*\]\]?\s*(#.*)?$")
+_KEY = re.compile(r"^\s*([A-Za-z0-9_\-\".' ]+?)\s*=")
+_UNIT = re.compile(r"\[([^\]]+)\]\s*$")
+
+
+class CaseText:
+    """A case file's text and parsed data, with the line of each key."""
+
+    def __init__(self, path: Path, text: str, data: dict[str, Any]) -> None:
+        self.path = path
+        self.text = text
+        self.data = data
+        self._lines = _key_lines(text)
+
+    def line_of(self, loc: tuple[str | int, ...]) -> int | None:
+        """Line of the key at ``loc``, or of its nearest enclosing table."""
+        for n in range(len(loc), 0, -1):
+            line = self._lines.get(tuple(loc[:n]))
+            if line is not None:
+                return line
+        return None
+
+
+def read_case(path: Path) -> CaseText:
+    """Read and parse a TOML case file; raise :class:`InputError` when it cannot."""
+    try:
+        raw = path.read_bytes()
+    except FileNotFoundError:
+        raise InputError(path, [Problem("no such file")]) from None
+    except IsADirectoryError:
+        raise InputError(path, [Problem("is a directory, not a case file")]) from None
+    except OSError as exc:
+        raise InputError(path, [Problem(f"cannot read: {exc.strerror}")]) from None
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        bad_line = raw[: exc.start].count(b"\n") + 1
+        problem = Problem("not a UTF-8 text file (TOML must be UTF-8)", line=bad_line)
+        raise InputError(path, [problem]) from None
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        # Python 3.11's tomllib carries the position only inside its message text.
+        message = str(exc)
+        match = _TOML_POSITION.search(message)
+        line: int | None = None
+        column: int | None = None
+        if match:
+            line, column = int(match.group(1)), int(match.group(2))
+        elif _TOML_EOF.search(message):
+            line = text.count("\n") + 1
+        reason = _TOML_POSITION.sub("", _TOML_EOF.sub("", message)).strip()
+        raise InputError(
+            path, [Problem(f"TOML syntax: {reason}", line=line, column=column)]
+        ) from None
+    return CaseText(path, text, data)
+
+
+def validate(model: type[M], case: CaseText) -> M:
+    """Validate parsed data against ``model``; every problem is reported at once."""
+    try:
+        return model.model_validate(case.data)
+    except ValidationError as exc:
+        problems = [_problem_from_error(model, case, err) for err in exc.errors()]
+        raise InputError(case.path, problems) from None
+
+
+def write_toml_atomic(path: Path, data: dict[str, Any], force: bool = False) -> None:
+    """Write ``data`` as TOML to ``path`` atomically; never overwrite without ``force``."""
+    import tomli_w
+
+    if path.exists() and not force:
+        raise InputError(path, [Problem("file exists; use --force to overwrite it")])
+    text = tomli_w.dumps(data)
+    directory = path.parent if str(path.parent) else Path(".")
+    try:
+        fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=directory)
+    except OSError as exc:
+        raise InputError(path, [Problem(f"cannot write: {exc.strerror}")]) from None
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8") as handle:
+            handle.write(text)
+        os.replace(tmp, path)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+
+
+# ------------------------------------------------------------------ error messages
+
+
+def _dotted(loc: tuple[str | int, ...]) -> str:
+    out = ""
+    for part in loc:
+        if isinstance(part, int):
+            out += f"[{part}]"
+        else:
+            out += f".{part}" if out else str(part)
+    return out
+
+
+def _walk(model: type[BaseModel], loc: tuple[str | int, ...]) -> tuple[Any, Any]:
+    """Follow ``loc`` through nested models: (model class holding the last key, FieldInfo)."""
+    current: Any = model
+    holder: Any = None
+    info: Any = None
+    for part in loc:
+        if isinstance(part, int):
+            continue
+        fields = getattr(current, "model_fields", None)
+        if fields is None or part not in fields:
+            return holder if holder is not None else current, None
+        holder, info = current, fields[part]
+        current = _inner_model(info.annotation)
+    return holder, info
+
+
+def _inner_model(annotation: Any) -> Any:
+    """The BaseModel inside ``X``, ``X | None``, ``list[X]``, ``dict[str, X]``."""
+    if isinstance(annotation, type) and issubclass(annotation, BaseModel):
+        return annotation
+    for arg in getattr(annotation, "__args__", ()) or ():
+        found = _inner_model(arg)
+        if found is not None:
+            return found
+    return None
+
+
+def _unit(info: Any) -> str:
+    description = getattr(info, "description", None) or ""
+    match = _UNIT.search(description)
+    return match.group(1) if match and match.group(1) not in ("-", "") else ""
+
+
+def _show(value: Any) -> str:
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, str):
+        return repr(value)
+    if isinstance(value, dict):
+        return "a table"
+    if isinstance(value, list):
+        return "an array"
+    return repr(value)
+
+
+def _problem_from_error(model: type[BaseModel], case: CaseText, err: Any) -> Problem:
+    loc: tuple[str | int, ...] = tuple(err["loc"])
+    # Drop pydantic's internal location parts (union member names, validator tags).
+    loc = tuple(p for p in loc if isinstance(p, int) or not p.startswith(("function-", "union")))
+    kind = err["type"]
+    value = err.get("input")
+    ctx = err.get("ctx") or {}
+    holder, info = _walk(model, loc)
+    unit = _unit(info)
+    unit_text = f" {unit}" if unit else ""
+    path = _dotted(loc)
+    line = case.line_of(loc)
+
+    if kind == "extra_forbidden":
+        names = list(getattr(holder, "model_fields", {}) or {})
+        key = str(loc[-1]) if loc else ""
+        close = difflib.get_close_matches(key, names, n=1, cutoff=0.6)
+        hint = f"did you mean '{close[0]}'?" if close else f"allowed keys: {', '.join(names)}"
+        return Problem(f"unknown key; {hint}", path, line)
+    if kind == "missing":
+        what = (getattr(info, "description", None) or "").strip()
+        return Problem(f"required key is missing{f' ({what})' if what else ''}", path, line)
+    if kind in ("greater_than", "greater_than_equal", "less_than", "less_than_equal"):
+        op = {"greater_than": ">", "greater_than_equal": ">=", "less_than": "<"}.get(kind, "<=")
+        bound = next(iter(ctx.values()))
+        return Problem(f"got {_show(value)}; must be {op} {bound}{unit_text}", path, line)
+    if kind == "finite_number":
+        return Problem(f"got {_show(value)}; must be a finite number{unit_text}", path, line)
+    if kind in ("float_type", "int_type", "float_parsing", "int_from_float"):
+        want = "an integer" if kind.startswith("int") else "a number"
+        return Problem(f"got {_show(value)}; expected {want}{unit_text}", path, line)
+    if kind == "literal_error":
+        return Problem(f"got {_show(value)}; allowed: {ctx.get('expected', '')}", path, line)
+    if kind == "string_type":
+        return Problem(f"got {_show(value)}; expected a string", path, line)
+    if kind in ("model_type", "model_attributes_type", "dict_type"):
+        return Problem(f"got {_show(value)}; expected a table", path, line)
+    if kind == "list_type":
+        return Problem(f"got {_show(value)}; expected an array", path, line)
+    if kind in ("too_short", "too_long"):
+        return Problem(err["msg"].lower(), path, line)
+    if kind == "value_error":
+        message = str(ctx.get("error", err["msg"]))
+        return Problem(message, path, line)
+    return Problem(f"got {_show(value)}; {err['msg'].lower()}", path, line)
+
+
+# --------------------------------------------------------------------- line finder
+
+
+def _split_key(key: str) -> tuple[str, ...]:
+    parts = []
+    for piece in re.findall(r'"[^"]*"|\'[^\']*\'|[^.]+', key):
+        parts.append(piece.strip().strip("\"'"))
+    return tuple(p for p in parts if p)
+
+
+def _key_lines(text: str) -> dict[tuple[str | int, ...], int]:
+    """Map each table and key path to its first line (arrays of tables indexed)."""
+    lines: dict[tuple[str | int, ...], int] = {}
+    counts: dict[tuple[str, ...], int] = {}
+    current: tuple[str | int, ...] = ()
+    for number, line in enumerate(text.splitlines(), start=1):
+        stripped = line.strip()
+        if not stripped or stripped.startswith("#"):
+            continue
+        header = _HEADER.match(line)
+        if header and "=" not in header.group(2):
+            name = _split_key(header.group(2))
+            if header.group(1) == "[[":
+                index = counts.get(name, 0)
+                counts[name] = index + 1
+                current = (*name, index)
+                lines.setdefault(name, number)
+            else:
+                current = name
+            lines.setdefault(current, number)
+            continue
+        key = _KEY.match(line)
+        if key:
+            lines.setdefault((*current, *_split_key(key.group(1))), number)
+    return lines

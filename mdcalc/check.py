@@ -1,0 +1,117 @@
+"""``mdcalc check``: run the ``[expect]`` tables of case files.
+
+Pure logic: collects files, runs them, compares; the CLI prints the outcome.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from mdcalc.casefile import read_case
+from mdcalc.errors import InputError
+from mdcalc.model import CaseBase, Expectation
+from mdcalc.report import Value, format_value
+from mdcalc.runner import run_case
+
+
+@dataclass
+class CheckRow:
+    file: str
+    key: str
+    expected: str
+    got: str
+    tolerance: str
+    passed: bool
+    source: str
+
+
+@dataclass
+class CheckOutcome:
+    rows: list[CheckRow] = field(default_factory=list)
+    input_errors: list[str] = field(default_factory=list)  # formatted, one per line
+    internal_errors: list[str] = field(default_factory=list)
+    files_checked: int = 0
+    files_skipped: int = 0  # case files without an [expect] table
+
+    @property
+    def passed(self) -> int:
+        return sum(r.passed for r in self.rows)
+
+    @property
+    def failed(self) -> int:
+        return sum(not r.passed for r in self.rows) + len(self.internal_errors)
+
+
+def collect(paths: Iterable[Path]) -> list[Path]:
+    """Files as given; folders searched recursively for ``*.toml``, in sorted order."""
+    files: list[Path] = []
+    for path in paths:
+        if path.is_dir():
+            files.extend(sorted(p for p in path.rglob("*.toml") if p.is_file()))
+        else:
+            files.append(path)
+    return files
+
+
+def within(expectation: Expectation, got: Value | None) -> bool:
+    """Does ``got`` meet the expectation (tolerance: rel or abs, whichever is wider)?"""
+    want = expectation.value
+    if got is None:
+        return False
+    if isinstance(want, bool) or isinstance(got, bool) or isinstance(want, str):
+        return type(want) is type(got) and want == got
+    if isinstance(got, str):
+        return False
+    allowed = max(expectation.abs or 0.0, (expectation.rel or 0.0) * abs(want))
+    return abs(float(got) - want) <= allowed
+
+
+def tolerance_text(expectation: Expectation) -> str:
+    parts = []
+    if expectation.rel is not None:
+        parts.append(f"rel {expectation.rel:g}")
+    if expectation.abs is not None:
+        parts.append(f"abs {expectation.abs:g}")
+    return ", ".join(parts) or "exact"
+
+
+def check_file(path: Path, outcome: CheckOutcome) -> None:
+    try:
+        case = read_case(path)
+        if "expect" not in case.data:
+            outcome.files_skipped += 1
+            return
+        report = run_case(path)
+        # run_case validated the whole file, so the [expect] table is valid here.
+        expectations = CaseBase.model_validate({"expect": case.data["expect"]}).expect or {}
+    except InputError as exc:
+        outcome.input_errors.append(str(exc))
+        return
+    except Exception as exc:  # a bug: reported, and checking goes on
+        outcome.internal_errors.append(f"{path}: internal error: {type(exc).__name__}: {exc}")
+        return
+    outcome.files_checked += 1
+    results = report.results()
+    for key, expectation in expectations.items():
+        quantity = results.get(key)
+        got = quantity.value if quantity is not None else None
+        outcome.rows.append(
+            CheckRow(
+                file=str(path),
+                key=key,
+                expected=format_value(expectation.value, 7),
+                got=format_value(got, 7) if quantity is not None else "no such result",
+                tolerance=tolerance_text(expectation),
+                passed=within(expectation, got),
+                source=expectation.source,
+            )
+        )
+
+
+def check_paths(paths: Iterable[Path]) -> CheckOutcome:
+    outcome = CheckOutcome()
+    for path in collect(paths):
+        check_file(path, outcome)
+    return outcome

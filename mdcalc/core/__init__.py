@@ -1,0 +1,1 @@
+"""Maths shared by several problems. No CLI, no I/O, no printing."""

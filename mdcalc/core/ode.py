@@ -1,0 +1,100 @@
+"""ODE reference runs: one place that calls scipy's solve_ivp, with timing.
+
+scipy is imported inside the functions, so a closed-form scene never pays for it.
+Problems integrate piecewise-smooth models segment by segment (a force switched
+off, a load lifting off the ground): :func:`advance` integrates one smooth segment
+up to its end time or to the first terminal event, and returns where it stopped.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+Rhs = Callable[[float, np.ndarray], np.ndarray]
+Event = Callable[[float, np.ndarray], float]
+
+#: Solvers by stiffness: explicit for oscillatory non-stiff models, implicit for
+#: stiff ones (stiffness ratios of 1e3 and more).
+EXPLICIT_LOOSE = "RK45"
+EXPLICIT_TIGHT = "DOP853"
+IMPLICIT = "Radau"
+
+#: What an ODE method imports (see mdcalc.methods.Method.imports).
+IMPORTS = ("scipy.integrate",)
+
+
+def pick_solver(rtol: float, stiff: bool = False) -> str:
+    """The solver an ODE reference run uses for this tolerance and stiffness."""
+    if stiff:
+        return IMPLICIT
+    return EXPLICIT_TIGHT if rtol < 1e-7 else EXPLICIT_LOOSE
+
+
+@dataclass
+class Segment:
+    """Where :func:`advance` stopped: time, state, which terminal event (or None)."""
+
+    t: float
+    y: np.ndarray
+    event: int | None
+    nfev: int
+    # Non-terminal event hits of the segment: (event index, time, state).
+    hits: list[tuple[int, float, np.ndarray]]
+
+
+def advance(
+    rhs: Rhs,
+    t0: float,
+    y0: np.ndarray,
+    t1: float,
+    *,
+    rtol: float,
+    atol: float | np.ndarray,
+    method: str,
+    terminal: Sequence[tuple[Event, int]] = (),
+    watch: Sequence[tuple[Event, int]] = (),
+) -> Segment:
+    """Integrate from ``t0`` to ``t1`` or to the first ``terminal`` event.
+
+    ``terminal`` and ``watch`` hold (event function, direction) pairs; ``watch``
+    events are recorded (for maxima: a zero of the derivative) without stopping.
+    """
+    from scipy.integrate import solve_ivp
+
+    events: list[Callable[[float, np.ndarray], float]] = []
+    for function, direction in terminal:
+        events.append(_event(function, direction, True))
+    for function, direction in watch:
+        events.append(_event(function, direction, False))
+    if t1 <= t0:
+        return Segment(t0, np.array(y0, dtype=float), None, 0, [])
+    solution = solve_ivp(
+        rhs, (t0, t1), y0, method=method, rtol=rtol, atol=atol, events=events or None
+    )
+    if solution.status < 0:
+        raise ArithmeticError(f"{method} failed at t = {solution.t[-1]:.6g} s: {solution.message}")
+    hits: list[tuple[int, float, np.ndarray]] = []
+    stopped: int | None = None
+    for index, (times, states) in enumerate(
+        zip(solution.t_events or [], solution.y_events or [], strict=True)
+    ):
+        if index < len(terminal):
+            if len(times) and solution.status == 1:
+                stopped = index
+        else:
+            hits.extend(
+                (index - len(terminal), float(t), s) for t, s in zip(times, states, strict=True)
+            )
+    return Segment(float(solution.t[-1]), solution.y[:, -1].copy(), stopped, solution.nfev, hits)
+
+
+def _event(function: Event, direction: int, terminal: bool) -> Event:
+    def event(t: float, y: np.ndarray) -> float:
+        return function(t, y)
+
+    event.terminal = terminal  # type: ignore[attr-defined]
+    event.direction = direction  # type: ignore[attr-defined]
+    return event

@@ -1,0 +1,98 @@
+"""The Methods machinery shared by every problem.
+
+A problem lists the ways it can compute its key results as :class:`Method` values;
+:func:`compare` runs each one, measures its run time, and computes the relative
+error of each key result against the reference method. The result is a
+:class:`~mdcalc.report.MethodsTable` ready for the report.
+
+A method returns ``{key: value}`` for the key results it computes, or raises
+:class:`NotApplicable` with the reason (the row then shows the reason instead of
+numbers: a closed form outside its validity, an ODE run skipped as too long).
+"""
+
+from __future__ import annotations
+
+import importlib
+import math
+import time
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
+
+from mdcalc.report import MethodQuantity, MethodRow, MethodsTable
+
+#: Cheap methods are repeated until this much time has passed, so that a
+#: microsecond-scale run time is a mean over many calls, not timer noise.
+MIN_TIMING_SECONDS = 2e-3
+MAX_REPEATS = 2000
+
+
+class NotApplicable(Exception):
+    """A method that cannot give an answer for this scene (the message says why)."""
+
+
+@dataclass
+class Method:
+    name: str
+    run: Callable[[], Mapping[str, float]]
+    reference: bool = False
+    note: str = ""
+    #: Modules the method imports; loaded before timing so that a one-off import
+    #: (scipy.integrate: about 0.5 s) is not charged to the method's run time.
+    imports: tuple[str, ...] = ()
+
+
+def timed(run: Callable[[], Mapping[str, float]]) -> tuple[Mapping[str, float], float]:
+    """Run ``run`` and return its result and the mean run time of one call [s]."""
+    start = time.perf_counter()
+    result = run()
+    elapsed = time.perf_counter() - start
+    if elapsed >= MIN_TIMING_SECONDS:
+        return result, elapsed
+    repeats = min(MAX_REPEATS, max(1, int(MIN_TIMING_SECONDS / max(elapsed, 1e-9))))
+    start = time.perf_counter()
+    for _ in range(repeats):
+        run()
+    return result, (time.perf_counter() - start) / repeats
+
+
+def relative_error(value: float, reference: float) -> float:
+    """|value - reference| / |reference|; the absolute error where reference is 0."""
+    if reference == 0.0:
+        return abs(value)
+    return abs(value - reference) / abs(reference)
+
+
+def compare(
+    title: str, key: str, quantities: list[MethodQuantity], methods: list[Method]
+) -> MethodsTable:
+    """Run every method, time it, and measure its error against the reference."""
+    references = [m for m in methods if m.reference]
+    if len(references) != 1:
+        raise ValueError(f"methods table {key!r} needs exactly one reference method")
+    rows: list[MethodRow] = []
+    reference_values: Mapping[str, float] = {}
+    for method in methods:
+        for module in method.imports:
+            importlib.import_module(module)
+        try:
+            values, seconds = timed(method.run)
+        except NotApplicable as reason:
+            if method.reference:
+                raise
+            rows.append(MethodRow(method.name, {}, {}, 0.0, False, f"not applicable: {reason}"))
+            continue
+        for k, v in values.items():
+            if not math.isfinite(v):
+                raise ArithmeticError(f"method {method.name!r} gave {k} = {v}")
+        if method.reference:
+            reference_values = values
+        rows.append(
+            MethodRow(method.name, dict(values), {}, seconds, method.reference, method.note)
+        )
+    for row in rows:
+        for q in quantities:
+            value = row.values.get(q.key)
+            ref = reference_values.get(q.key)
+            if value is not None and ref is not None and not row.reference:
+                row.rel_errors[q.key] = relative_error(value, ref)
+    return MethodsTable(title, key, quantities, rows)

@@ -1,0 +1,67 @@
+"""Registry of problems: one module per subcommand.
+
+A problem module supplies, for its subcommand to exist:
+
+1. ``Case`` -- a pydantic model of the case file, derived from
+   :class:`mdcalc.model.CaseBase`, with ``problem: Literal["<name>"]``; sections are
+   :class:`mdcalc.model.CaseModel` (strict, no unknown keys); SI units, the unit in
+   brackets at the end of every field description; optional sections for optional
+   parts of the scene.
+2. ``solve(case) -> Result`` -- pure: no printing, no I/O. A valid scene without an
+   answer comes back as a result whose ``status`` is ``"no-answer"`` with a
+   ``message`` saying why (the CLI exits 3), never as an exception.
+3. ``report(result) -> Report`` -- the sections the scene needs (quantities with
+   stable keys, tables, a Methods table built by :func:`mdcalc.methods.compare`).
+4. ``template() -> dict`` -- a starter case that runs as it is (``mdcalc new``).
+5. Reference, stiff and extreme cases in ``cases/<name>/`` with ``[expect]`` tables,
+   and tests whose expected values are computed independently of the module.
+
+Then add one :class:`ProblemSpec` to ``PROBLEMS`` below: the CLI command, ``check``
+and ``new`` pick it up. The module is imported only when its command runs, so
+``mdcalc --help`` pays for none of them.
+"""
+
+from __future__ import annotations
+
+import importlib
+from dataclasses import dataclass
+from typing import Any, Protocol, cast
+
+from mdcalc.report import Report
+
+
+class ProblemModule(Protocol):
+    Case: Any
+
+    def solve(self, case: Any) -> Any: ...
+
+    def report(self, result: Any) -> Report: ...
+
+    def template(self) -> dict[str, Any]: ...
+
+
+@dataclass(frozen=True)
+class ProblemSpec:
+    name: str
+    module: str
+    summary: str
+
+    def load(self) -> ProblemModule:
+        return cast(ProblemModule, importlib.import_module(f"mdcalc.problems.{self.module}"))
+
+
+PROBLEMS: dict[str, ProblemSpec] = {
+    spec.name: spec
+    for spec in (
+        ProblemSpec(
+            "hoist",
+            "hoist",
+            "Hoist motor and brake: static and start torques, reduced inertia, rope loads.",
+        ),
+        ProblemSpec(
+            "braking",
+            "braking",
+            "Car braking: time and distance, adhesion limit, road resistance, drag, reaction.",
+        ),
+    )
+}

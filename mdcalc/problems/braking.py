@@ -1,0 +1,619 @@
+"""``braking``: braking time and distance of a car (seed 000 §7.4, brief §3).
+
+Lecture method (7.48): a constant brake force P_T = k·P_D, no road resistance, no
+adhesion limit: t = V0·m/P_T, S = V0²·m/(2·P_T).
+
+Physical model (the reference): the brake force the tyres can pass is limited by
+adhesion, F_b = min(F_demand, φ·m·g) (more would lock the wheels); road resistance
+ψ·m·g and aerodynamic drag ½·ρ·C_x·A·v² act throughout. The stop has up to three
+phases: driver reaction t_r (no brake force), brake build-up t_b (brake force rising
+linearly to F_b), full braking. Without drag every phase has a closed form; with
+drag the reaction and full-braking phases still do (constant force plus v² drag),
+the build-up phase does not, and a tight ODE run is then the reference.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, replace
+from typing import Any, Literal
+
+from pydantic import Field, model_validator
+
+from mdcalc.core.ode import IMPORTS as ODE_IMPORTS
+from mdcalc.core.units import STANDARD_GRAVITY, kmh_to_m_s
+from mdcalc.methods import Method, compare
+from mdcalc.model import CaseBase, CaseModel
+from mdcalc.report import (
+    Column,
+    MethodQuantity,
+    MethodsTable,
+    Note,
+    Quantities,
+    Quantity,
+    Report,
+    Table,
+)
+from mdcalc.tables import ROAD_SURFACES
+
+SurfaceName = Literal[
+    "dry-asphalt", "wet-asphalt", "gravel", "dry-dirt", "wet-dirt", "packed-snow", "icy-road", "ice"
+]
+
+
+# ------------------------------------------------------------------------ the case
+
+
+def _exactly_one(owner: str, **given: object) -> None:
+    named = [k for k, v in given.items() if v is not None]
+    if len(named) != 1:
+        keys = " or ".join(given)
+        raise ValueError(f"give exactly one of {keys} in [{owner}] (got {len(named)})")
+
+
+class Vehicle(CaseModel):
+    mass: float = Field(gt=0, description="Vehicle mass [kg]")
+    initial_speed: float | None = Field(
+        default=None, gt=0, description="Speed when braking begins [m/s]"
+    )
+    initial_speed_kmh: float | None = Field(
+        default=None, gt=0, description="Speed when braking begins [km/h]"
+    )
+
+    @model_validator(mode="after")
+    def _one_speed(self) -> Vehicle:
+        _exactly_one(
+            "vehicle", initial_speed=self.initial_speed, initial_speed_kmh=self.initial_speed_kmh
+        )
+        return self
+
+    @property
+    def speed(self) -> float:
+        if self.initial_speed is not None:
+            return self.initial_speed
+        assert self.initial_speed_kmh is not None
+        return kmh_to_m_s(self.initial_speed_kmh)
+
+
+class Brakes(CaseModel):
+    """What the brakes demand; without this section: full braking at the adhesion limit."""
+
+    force: float | None = Field(default=None, gt=0, description="Brake force at the tyres [N]")
+    deceleration: float | None = Field(
+        default=None, gt=0, description="Demanded deceleration from the brakes [m/s^2]"
+    )
+    traction_force: float | None = Field(
+        default=None, gt=0, description="P_D, top-gear traction force (7.35) [N]"
+    )
+    force_multiple: float | None = Field(
+        default=None, gt=0, description="k, brake force as a multiple of P_D (lecture: 10) [-]"
+    )
+
+    @model_validator(mode="after")
+    def _one_demand(self) -> Brakes:
+        lecture = None
+        if self.traction_force is not None or self.force_multiple is not None:
+            if self.traction_force is None or self.force_multiple is None:
+                raise ValueError("traction_force and force_multiple go together (P_T = k·P_D)")
+            lecture = self.traction_force * self.force_multiple
+        _exactly_one(
+            "brakes",
+            force=self.force,
+            deceleration=self.deceleration,
+            **{"traction_force with force_multiple": lecture},
+        )
+        return self
+
+    def demand(self, mass: float) -> float:
+        """Brake force the brakes ask of the tyres [N]."""
+        if self.force is not None:
+            return self.force
+        if self.deceleration is not None:
+            return mass * self.deceleration
+        assert self.traction_force is not None and self.force_multiple is not None
+        return self.force_multiple * self.traction_force  # (7.44): P_T = k·P_D
+
+
+class Road(CaseModel):
+    surface: SurfaceName | None = Field(
+        default=None, description="Road surface; phi is the low end of its range [-]"
+    )
+    adhesion: float | None = Field(
+        default=None, gt=0, le=2, description="Tyre-road adhesion coefficient phi [-]"
+    )
+    resistance: float = Field(
+        default=0.0, ge=0, lt=1, description="Road resistance coefficient psi, rolling + grade [-]"
+    )
+    compare_surfaces: bool = Field(
+        default=False, description="Add a table of stopping distances over road surfaces [-]"
+    )
+
+    @model_validator(mode="after")
+    def _one_adhesion(self) -> Road:
+        _exactly_one("road", surface=self.surface, adhesion=self.adhesion)
+        return self
+
+    @property
+    def phi(self) -> float:
+        if self.adhesion is not None:
+            return self.adhesion
+        assert self.surface is not None
+        return ROAD_SURFACES[self.surface].low
+
+
+class Drag(CaseModel):
+    drag_coefficient: float = Field(gt=0, le=3, description="Drag coefficient C_x [-]")
+    frontal_area: float = Field(gt=0, le=100, description="Frontal area A [m^2]")
+    air_density: float = Field(default=1.225, gt=0, le=5, description="Air density rho [kg/m^3]")
+
+    @property
+    def factor(self) -> float:
+        """k in F = k·v² [kg/m]."""
+        return 0.5 * self.air_density * self.drag_coefficient * self.frontal_area
+
+
+class Driver(CaseModel):
+    reaction_time: float = Field(default=0.0, ge=0, le=10, description="Driver reaction time [s]")
+    build_up_time: float = Field(
+        default=0.0, ge=0, le=10, description="Brake build-up time, force rising linearly [s]"
+    )
+
+
+class Case(CaseBase):
+    problem: Literal["braking"] = Field(description="Problem name [-]")
+    gravity: float = Field(default=STANDARD_GRAVITY, gt=0, description="Gravity g [m/s^2]")
+    vehicle: Vehicle
+    brakes: Brakes | None = None
+    road: Road
+    drag: Drag | None = None
+    driver: Driver | None = None
+
+
+# -------------------------------------------------------------------- closed forms
+
+
+@dataclass(frozen=True)
+class Phase:
+    """Motion over one phase: speed at its end, distance and time it took."""
+
+    speed: float
+    distance: float
+    time: float
+
+    @property
+    def stopped(self) -> bool:
+        return self.speed == 0.0
+
+
+def constant_force_phase(
+    v0: float, force: float, drag: float, mass: float, duration: float | None
+) -> Phase:
+    """m·dv/dt = -(force + drag·v²) from v0 for ``duration`` or until the stop.
+
+    Closed forms: without drag, uniform deceleration; with drag and force > 0,
+    v = s·tan(θ0 - ω·t), s = √(F/k), ω = √(F·k)/m; with drag alone, v = v0/(1 + k·v0·t/m).
+    """
+    if v0 == 0.0:
+        return Phase(0.0, 0.0, 0.0)
+    if drag == 0.0:
+        if force == 0.0:
+            assert duration is not None, "no force and no drag: the car never stops"
+            return Phase(v0, v0 * duration, duration)
+        a = force / mass
+        t_stop = v0 / a
+        if duration is None or duration >= t_stop:
+            return Phase(0.0, v0 * v0 / (2.0 * a), t_stop)
+        return Phase(v0 - a * duration, v0 * duration - 0.5 * a * duration**2, duration)
+    if force == 0.0:
+        assert duration is not None, "drag alone never stops the car"
+        u = drag * v0 * duration / mass
+        return Phase(v0 / (1.0 + u), mass / drag * math.log1p(u), duration)
+    s = math.sqrt(force / drag)
+    omega = math.sqrt(force * drag) / mass
+    theta0 = math.atan(v0 / s)
+    t_stop = theta0 / omega
+    if duration is None or duration >= t_stop:
+        # x = (m/k)·ln(cos(θ0 - ωt)/cos θ0) at the stop: (m/2k)·ln(1 + k·v0²/F)
+        return Phase(0.0, mass / (2.0 * drag) * math.log1p(drag * v0 * v0 / force), t_stop)
+    theta = theta0 - omega * duration
+    distance = mass / drag * math.log(math.cos(theta) / math.cos(theta0))
+    return Phase(s * math.tan(theta), distance, duration)
+
+
+def ramp_phase(v0: float, base: float, rise: float, mass: float, duration: float) -> Phase:
+    """m·dv/dt = -(base + rise·t/duration), no drag: the brake build-up phase."""
+    if v0 == 0.0 or duration == 0.0:
+        return Phase(v0, 0.0, 0.0)
+    a0 = base / mass
+    jerk = rise / (mass * duration)
+    v_end = v0 - a0 * duration - 0.5 * jerk * duration**2
+    if v_end > 0.0:
+        distance = v0 * duration - 0.5 * a0 * duration**2 - jerk * duration**3 / 6.0
+        return Phase(v_end, distance, duration)
+    # Stop inside the ramp: jerk/2·τ² + a0·τ - v0 = 0, the root in a cancellation-free form.
+    tau = 2.0 * v0 / (a0 + math.sqrt(a0 * a0 + 2.0 * jerk * v0))
+    distance = v0 * tau - 0.5 * a0 * tau**2 - jerk * tau**3 / 6.0
+    return Phase(0.0, distance, tau)
+
+
+# ------------------------------------------------------------------------ the scene
+
+
+@dataclass(frozen=True)
+class Scene:
+    """The case reduced to SI numbers the methods share."""
+
+    mass: float
+    v0: float
+    g: float
+    phi: float
+    psi: float
+    demand: float  # brake force asked of the tyres [N]
+    brake_force: float  # what adhesion lets through [N]
+    drag: float  # k [kg/m]; 0 without drag
+    reaction_time: float
+    build_up_time: float
+
+    @property
+    def road_force(self) -> float:
+        return self.psi * self.mass * self.g
+
+
+def scene_of(case: Case) -> Scene:
+    mass, g, phi = case.vehicle.mass, case.gravity, case.road.phi
+    adhesion_force = phi * mass * g
+    demand = case.brakes.demand(mass) if case.brakes is not None else adhesion_force
+    driver = case.driver or Driver()
+    return Scene(
+        mass=mass,
+        v0=case.vehicle.speed,
+        g=g,
+        phi=phi,
+        psi=case.road.resistance,
+        demand=demand,
+        brake_force=min(demand, adhesion_force),
+        drag=case.drag.factor if case.drag is not None else 0.0,
+        reaction_time=driver.reaction_time,
+        build_up_time=driver.build_up_time,
+    )
+
+
+@dataclass(frozen=True)
+class Stop:
+    reaction: Phase
+    build_up: Phase
+    braking: Phase
+
+    @property
+    def distance(self) -> float:
+        return self.reaction.distance + self.build_up.distance + self.braking.distance
+
+    @property
+    def time(self) -> float:
+        return self.reaction.time + self.build_up.time + self.braking.time
+
+    def values(self) -> dict[str, float]:
+        return {"stopping_distance": self.distance, "stopping_time": self.time}
+
+
+def exact_stop(scene: Scene) -> Stop:
+    """Piecewise closed form; exact unless drag acts during a build-up phase."""
+    if scene.drag > 0.0 and scene.build_up_time > 0.0:
+        raise ValueError("no closed form for the build-up phase with drag")
+    reaction = constant_force_phase(
+        scene.v0, scene.road_force, scene.drag, scene.mass, scene.reaction_time
+    )
+    build_up = ramp_phase(
+        reaction.speed, scene.road_force, scene.brake_force, scene.mass, scene.build_up_time
+    )
+    braking = constant_force_phase(
+        build_up.speed, scene.road_force + scene.brake_force, scene.drag, scene.mass, None
+    )
+    return Stop(reaction, build_up, braking)
+
+
+def lecture_stop(scene: Scene) -> dict[str, float]:
+    """(7.48) with P_T the demanded force; the textbook V0·t_r + V0·t_b/2 added."""
+    braking_time = scene.v0 * scene.mass / scene.demand
+    return {
+        "stopping_distance": scene.v0 * (scene.reaction_time + 0.5 * scene.build_up_time)
+        + 0.5 * scene.v0 * braking_time,
+        "stopping_time": scene.reaction_time + 0.5 * scene.build_up_time + braking_time,
+    }
+
+
+def textbook_stop(scene: Scene) -> dict[str, float]:
+    """V0·t_r + V0·t_b/2 + V0²/(2a), a from adhesion-limited brakes and road, no drag."""
+    a = (scene.brake_force + scene.road_force) / scene.mass
+    lead = scene.reaction_time + 0.5 * scene.build_up_time
+    return {
+        "stopping_distance": scene.v0 * lead + scene.v0**2 / (2.0 * a),
+        "stopping_time": lead + scene.v0 / a,
+    }
+
+
+def ode_stop(scene: Scene, rtol: float) -> dict[str, float]:
+    """Integrate m·v' = -(F_road + F_brake(t) + k·v²), x' = v phase by phase to v = 0."""
+    import numpy as np
+
+    from mdcalc.core.ode import advance, pick_solver
+
+    m, k, base = scene.mass, scene.drag, scene.road_force
+    t_r, t_b, f_b = scene.reaction_time, scene.build_up_time, scene.brake_force
+    # Upper bound of the stop time: the road and full brake force alone, plus the lead.
+    t_bound = t_r + t_b + scene.v0 * m / (base + f_b) * 1.01 + 1.0
+    phases = [
+        (t_r, lambda t: 0.0),
+        (t_r + t_b, lambda t: f_b * (t - t_r) / t_b),
+        (t_bound, lambda t: f_b),
+    ]
+    method = pick_solver(rtol)
+    atol = np.array([rtol * scene.v0, rtol * scene.v0 * t_bound]) * 1e-3
+    t, y = 0.0, np.array([scene.v0, 0.0])
+    for t_end, brake in phases:
+        if t_end <= t:
+            continue
+
+        def rhs(time: float, state: np.ndarray, brake: Any = brake) -> np.ndarray:
+            v = max(state[0], 0.0)
+            return np.array([-(base + brake(time) + k * v * v) / m, state[0]])
+
+        segment = advance(
+            rhs,
+            t,
+            y,
+            t_end,
+            rtol=rtol,
+            atol=atol,
+            method=method,
+            terminal=[(lambda time, state: state[0], -1)],
+        )
+        t, y = segment.t, segment.y
+        if segment.event is not None:
+            return {"stopping_distance": float(y[1]), "stopping_time": t}
+    raise ArithmeticError("the ODE run did not reach the stop within its time bound")
+
+
+# ------------------------------------------------------------------------- result
+
+
+@dataclass
+class Result:
+    case: Case
+    scene: Scene
+    stop: dict[str, float]
+    phases: Stop | None  # the closed-form phases when the closed form is the reference
+    methods: MethodsTable
+    surfaces: list[list[Any]] = field(default_factory=list)
+    status: Literal["ok", "no-answer"] = "ok"
+    message: str | None = None
+
+
+QUANTITIES = [
+    MethodQuantity("stopping_distance", "distance", "m"),
+    MethodQuantity("stopping_time", "time", "s"),
+]
+
+
+def solve(case: Case) -> Result:
+    scene = scene_of(case)
+    has_driver = scene.reaction_time > 0.0 or scene.build_up_time > 0.0
+    closed_form_exact = not (scene.drag > 0.0 and scene.build_up_time > 0.0)
+
+    methods = [
+        Method(
+            "lecture (7.48)",
+            lambda: lecture_stop(scene),
+            note="k·P_D, no road, no adhesion limit" if case.brakes else "",
+        )
+    ]
+    if has_driver or scene.drag > 0.0:
+        methods.append(
+            Method(
+                "textbook V0·t_r + V0·t_b/2 + V0²/2a",
+                lambda: textbook_stop(scene),
+                note="no drag" if scene.drag > 0.0 else "",
+            )
+        )
+    if closed_form_exact:
+        methods.append(
+            Method(
+                "exact, piecewise closed form", lambda: exact_stop(scene).values(), reference=True
+            )
+        )
+    if scene.drag > 0.0:
+        methods.append(
+            Method("ODE RK45, rtol 1e-3", lambda: ode_stop(scene, 1e-3), imports=ODE_IMPORTS)
+        )
+        methods.append(
+            Method("ODE RK45, rtol 1e-6", lambda: ode_stop(scene, 1e-6), imports=ODE_IMPORTS)
+        )
+        if not closed_form_exact:
+            methods.append(
+                Method(
+                    "ODE DOP853, rtol 1e-10",
+                    lambda: ode_stop(scene, 1e-10),
+                    imports=ODE_IMPORTS,
+                    reference=True,
+                )
+            )
+    table = compare("Methods: stopping distance and time", "stop", QUANTITIES, methods)
+    reference = next(row for row in table.rows if row.reference)
+    stop = {k: float(v) for k, v in reference.values.items() if v is not None}
+    return Result(
+        case=case,
+        scene=scene,
+        stop=stop,
+        phases=exact_stop(scene) if closed_form_exact else None,
+        methods=table,
+        surfaces=surface_table(scene) if case.road.compare_surfaces else [],
+    )
+
+
+def surface_table(scene: Scene) -> list[list[Any]]:
+    """Stopping distance over road surfaces by the textbook formula (no drag)."""
+    rows: list[list[Any]] = []
+    for name, phi in ROAD_SURFACES.items():
+        distances = []
+        for adhesion in (phi.high, phi.low):
+            brake_force = min(scene.demand, adhesion * scene.mass * scene.g)
+            limited = replace(scene, phi=adhesion, brake_force=brake_force)
+            distances.append(textbook_stop(limited)["stopping_distance"])
+        locks = scene.demand > phi.low * scene.mass * scene.g
+        rows.append([name, phi.low, phi.high, distances[0], distances[1], locks])
+    return rows
+
+
+# ------------------------------------------------------------------------- report
+
+
+def report(result: Result) -> Report:
+    case, scene = result.case, result.scene
+    title = case.title or "Braking"
+    demanded_a = scene.demand / scene.mass
+    adhesion_a = scene.phi * scene.g
+    lock = scene.demand > scene.phi * scene.mass * scene.g
+    road_label = case.road.surface or "given adhesion"
+
+    given = Quantities(
+        "Scene",
+        [
+            Quantity("initial_speed", "Initial speed V0", scene.v0, "m/s"),
+            Quantity("initial_speed_kmh", "Initial speed V0", scene.v0 * 3.6, "km/h"),
+            Quantity("mass", "Mass m", scene.mass, "kg"),
+            Quantity("adhesion", "Adhesion coefficient φ", scene.phi, "", road_label),
+        ],
+    )
+    if scene.psi > 0.0:
+        given.items.append(Quantity("road_resistance", "Road resistance ψ", scene.psi, ""))
+    if case.drag is not None:
+        given.items.append(Quantity("drag_factor", "Drag factor ½·ρ·C_x·A", scene.drag, "kg/m"))
+
+    sections: list[Any] = [given]
+    notes: list[Note] = []
+    if case.brakes is not None:
+        lecture = lecture_stop(replace(scene, reaction_time=0.0, build_up_time=0.0))
+        sections.append(
+            Quantities(
+                "Lecture method (7.48): constant force, no resistance",
+                [
+                    Quantity("brake_force_demanded", "Brake force demanded P_T", scene.demand, "N"),
+                    Quantity(
+                        "demanded_deceleration", "Deceleration demanded P_T/m", demanded_a, "m/s²"
+                    ),
+                    Quantity(
+                        "demanded_deceleration_g",
+                        "Deceleration demanded",
+                        demanded_a / scene.g,
+                        "g",
+                    ),
+                    Quantity(
+                        "lecture_time", "Braking time t = V0·m/P_T", lecture["stopping_time"], "s"
+                    ),
+                    Quantity(
+                        "lecture_distance",
+                        "Braking distance S = V0²·m/(2·P_T)",
+                        lecture["stopping_distance"],
+                        "m",
+                    ),
+                ],
+            )
+        )
+    adhesion_items = [
+        Quantity("adhesion_deceleration", "Adhesion limit φ·g", adhesion_a, "m/s²"),
+        Quantity(
+            "adhesion_limited_time",
+            "Time at the adhesion limit V0/(φ·g)",
+            scene.v0 / adhesion_a,
+            "s",
+        ),
+        Quantity(
+            "adhesion_limited_distance",
+            "Distance at the adhesion limit V0²/(2·φ·g)",
+            scene.v0**2 / (2.0 * adhesion_a),
+            "m",
+        ),
+    ]
+    if case.brakes is not None:
+        adhesion_items.insert(
+            0,
+            Quantity(
+                "wheel_lock", "Wheels lock", lock, "", "demand exceeds adhesion" if lock else ""
+            ),
+        )
+        if lock:
+            notes.append(Note("warning", _lock_warning(scene)))
+
+    stop_items = [
+        Quantity("braking_force", "Brake force through the tyres F_b", scene.brake_force, "N"),
+        Quantity(
+            "deceleration",
+            "Deceleration, full braking (no drag)",
+            (scene.brake_force + scene.road_force) / scene.mass,
+            "m/s²",
+        ),
+    ]
+    if result.phases is not None and (scene.reaction_time > 0 or scene.build_up_time > 0):
+        p = result.phases
+        stop_items += [
+            Quantity(
+                "reaction_distance",
+                f"Reaction, {scene.reaction_time:g} s",
+                p.reaction.distance,
+                "m",
+            ),
+            Quantity(
+                "build_up_distance",
+                f"Brake build-up, {scene.build_up_time:g} s",
+                p.build_up.distance,
+                "m",
+            ),
+            Quantity("braking_distance", "Full braking", p.braking.distance, "m"),
+        ]
+    stop_items += [
+        Quantity("stopping_distance", "Stopping distance", result.stop["stopping_distance"], "m"),
+        Quantity("stopping_time", "Stopping time", result.stop["stopping_time"], "s"),
+    ]
+    sections.append(Quantities("Stop (reference method)", stop_items))
+    sections.append(result.methods)
+    if result.surfaces:
+        sections.append(
+            Table(
+                "Road surfaces (textbook formula, no drag)",
+                "surfaces",
+                [
+                    Column("surface"),
+                    Column("φ low"),
+                    Column("φ high"),
+                    Column("distance at φ high", "m"),
+                    Column("distance at φ low", "m"),
+                    Column("wheels lock at φ low"),
+                ],
+                result.surfaces,
+            )
+        )
+    return Report("braking", title, sections, notes, result.status, result.message)
+
+
+def _lock_warning(scene: Scene) -> str:
+    demanded = scene.demand / scene.mass
+    limit = scene.phi * scene.g
+    text = (
+        f"the brakes demand {demanded:.4g} m/s² = {demanded / scene.g:.3g}·g, more than "
+        f"adhesion allows on this road (φ·g = {limit:.4g} m/s²): the wheels lock and the car "
+        f"slides; the braking distance is at least {scene.v0**2 / (2.0 * limit):.4g} m, not "
+        f"the lecture's {scene.v0**2 * scene.mass / (2.0 * scene.demand):.4g} m"
+    )
+    if demanded > 0.9 * scene.g:
+        text += " (no road surface gives more than φ = 0.9)"
+    return text
+
+
+def template() -> dict[str, Any]:
+    return {
+        "problem": "braking",
+        "title": "Emergency stop from 100 km/h on dry asphalt",
+        "vehicle": {"mass": 1500.0, "initial_speed_kmh": 100.0},
+        "road": {"surface": "dry-asphalt", "resistance": 0.015},
+        "driver": {"reaction_time": 1.0, "build_up_time": 0.2},
+    }

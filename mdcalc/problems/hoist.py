@@ -1,0 +1,735 @@
+"""``hoist``: hoist motor and brake (seed 000 §7.2) and rope loads at start (§7.6).
+
+Steady lifting: η = Π η_i, N_p = G·V, N_d = N_p/η (7.24), static torque on the motor
+shaft M_c = G·V/(ω1·η) (7.26), brake torque K_t·M_c (7.27); lowering, the load
+drives the train and M_c,low = G·V·η/ω1.
+
+Start: reduced inertia by kinetic energy J = J1 + Σ J_k(ω_k/ω1)² + m(V/ω1)² (7.30) or
+the estimate (1.1…1.2)·J1 (7.31); uniform acceleration ω1/t_p (7.32); starting
+torque M_c + J·ω1/t_p (7.28), or t_p = J·ω1/(M_start - M_c) from a catalogue torque.
+
+Rope (two-mass model on the rope line): drive mass m1 (drive inertia reduced to the
+load's motion), rope stiffness c, load m2 = G/g. The drive force is G + (m1+m2)·V/t_p
+during the start and G after it. The load either hangs on the rope (closed form
+(7.92)-(7.96), exact for this model) or lies on the ground with the rope slack
+(7.97)-(7.98); for the latter a tight ODE run with lift-off and touch-down events is
+the reference.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Annotated, Any, Literal
+
+from pydantic import Field, model_validator
+
+from mdcalc.core.ode import IMPORTS as ODE_IMPORTS
+from mdcalc.core.sdof import rectangular_pulse_peak
+from mdcalc.core.units import STANDARD_GRAVITY, rpm_to_rad_s
+from mdcalc.methods import Method, NotApplicable, compare
+from mdcalc.model import CaseBase, CaseModel
+from mdcalc.report import MethodQuantity, MethodsTable, Note, Quantities, Quantity, Report
+from mdcalc.tables import BRAKE_SAFETY_FACTOR, HOIST_ACCELERATION, Range
+
+Efficiency = Annotated[float, Field(gt=0, le=1)]
+
+#: The ODE methods are not run past this many rope oscillation periods.
+MAX_ODE_PERIODS = 3000
+
+
+# ------------------------------------------------------------------------ the case
+
+
+class Load(CaseModel):
+    mass: float = Field(gt=0, description="Mass of the load with its hook block [kg]")
+    lifting_speed: float = Field(gt=0, description="Steady lifting speed V [m/s]")
+
+
+class Shaft(CaseModel):
+    name: str = Field(min_length=1, description="What turns on this shaft [-]")
+    inertia: float = Field(gt=0, description="Moment of inertia on the shaft [kg*m^2]")
+    speed_rpm: float | None = Field(default=None, gt=0, description="Shaft speed [rpm]")
+    ratio: float | None = Field(
+        default=None, gt=0, description="Gear ratio from the motor, omega_1/omega_k [-]"
+    )
+
+    @model_validator(mode="after")
+    def _one_speed(self) -> Shaft:
+        if (self.speed_rpm is None) == (self.ratio is None):
+            raise ValueError("give exactly one of speed_rpm or ratio")
+        return self
+
+    def speed_ratio(self, motor_speed: float) -> float:
+        """omega_k/omega_1 [-]."""
+        if self.ratio is not None:
+            return 1.0 / self.ratio
+        assert self.speed_rpm is not None
+        return rpm_to_rad_s(self.speed_rpm) / motor_speed
+
+
+class Drive(CaseModel):
+    motor_speed_rpm: float = Field(gt=0, description="Motor speed, steady lifting [rpm]")
+    motor_inertia: float = Field(
+        gt=0, description="J1: rotor, coupling and brake pulley on the motor shaft [kg*m^2]"
+    )
+    stage_efficiencies: list[Efficiency] = Field(
+        min_length=1, description="Efficiencies of the gear stages and the drum [-]"
+    )
+    pulley_efficiency: Efficiency = Field(
+        default=1.0, description="Efficiency of the reeving (polyspast) [-]"
+    )
+    brake_safety_factor: float = Field(ge=1, le=10, description="K_t of (7.27) [-]")
+    shafts: list[Shaft] = Field(
+        default_factory=list, description="Other inertias (gears, drum) for (7.30) [-]"
+    )
+    inertia_estimate_factor: float = Field(
+        default=1.2, ge=1, le=2, description="Factor of (7.31) when no shafts are given [-]"
+    )
+
+
+class Start(CaseModel):
+    time: float | None = Field(default=None, gt=0, description="Start time t_p [s]")
+    starting_torque: float | None = Field(
+        default=None, gt=0, description="Catalogue starting torque of the motor [N*m]"
+    )
+    machine: Literal["crane", "lift"] = Field(
+        default="crane", description="Machine type, for the allowable acceleration [-]"
+    )
+    allowable_acceleration: float | None = Field(
+        default=None, gt=0, description="Allowable load acceleration, overrides the table [m/s^2]"
+    )
+
+    @model_validator(mode="after")
+    def _one_way(self) -> Start:
+        if (self.time is None) == (self.starting_torque is None):
+            raise ValueError("give exactly one of time or starting_torque")
+        return self
+
+
+class Rope(CaseModel):
+    stiffness: float | None = Field(
+        default=None, gt=0, description="Stiffness of the reeving at the load c [N/m]"
+    )
+    elastic_modulus: float | None = Field(
+        default=None, gt=0, description="Rope modulus E, with area and length [Pa]"
+    )
+    area: float | None = Field(default=None, gt=0, description="Metal area of one rope [m^2]")
+    length: float | None = Field(default=None, gt=0, description="Length of one branch [m]")
+    branches: int = Field(default=1, ge=1, le=64, description="Branches carrying the load [-]")
+    drive_mass: float | None = Field(
+        default=None, gt=0, description="m1, drive inertia reduced to the rope line [kg]"
+    )
+    slack_length: float = Field(
+        default=0.0, ge=0, description="Slack to take up before the rope tightens [m]"
+    )
+
+    @model_validator(mode="after")
+    def _one_stiffness(self) -> Rope:
+        parts = (self.elastic_modulus, self.area, self.length)
+        if self.stiffness is not None and any(p is not None for p in parts):
+            raise ValueError("give stiffness, or elastic_modulus with area and length, not both")
+        if self.stiffness is None and any(p is None for p in parts):
+            raise ValueError("give stiffness, or elastic_modulus with area and length")
+        return self
+
+    @property
+    def c(self) -> float:
+        if self.stiffness is not None:
+            return self.stiffness
+        assert self.elastic_modulus and self.area and self.length
+        return self.branches * self.elastic_modulus * self.area / self.length
+
+
+class Case(CaseBase):
+    problem: Literal["hoist"] = Field(description="Problem name [-]")
+    gravity: float = Field(default=STANDARD_GRAVITY, gt=0, description="Gravity g [m/s^2]")
+    load: Load
+    drive: Drive
+    start: Start
+    rope: Rope | None = None
+
+
+# -------------------------------------------------------------------- steady motion
+
+
+@dataclass(frozen=True)
+class Steady:
+    weight: float  # G [N]
+    efficiency: float  # η [-]
+    useful_power: float  # N_p [W]
+    motor_power: float  # N_d [W]
+    motor_speed: float  # ω1 [rad/s]
+    static_torque: float  # M_c [N·m]
+    brake_torque: float  # [N·m]
+    lowering_torque: float  # [N·m]
+
+
+def steady(case: Case) -> Steady:
+    weight = case.load.mass * case.gravity
+    efficiency = math.prod(case.drive.stage_efficiencies) * case.drive.pulley_efficiency
+    omega = rpm_to_rad_s(case.drive.motor_speed_rpm)
+    useful = weight * case.load.lifting_speed  # (7.25)
+    static = useful / (omega * efficiency)  # (7.26)
+    return Steady(
+        weight=weight,
+        efficiency=efficiency,
+        useful_power=useful,
+        motor_power=useful / efficiency,  # (7.24)
+        motor_speed=omega,
+        static_torque=static,
+        brake_torque=case.drive.brake_safety_factor * static,  # (7.27)
+        lowering_torque=useful * efficiency / omega,  # the load drives: η multiplies
+    )
+
+
+# ---------------------------------------------------------------- reduced inertia
+
+
+@dataclass(frozen=True)
+class Inertia:
+    motor: float  # J1
+    shafts: float  # Σ J_k (ω_k/ω1)²
+    load: float  # m (V/ω1)²
+    estimated: bool  # True: J = factor·J1 (7.31), no shafts given
+
+    factor: float
+
+    @property
+    def total(self) -> float:
+        if self.estimated:
+            return self.factor * self.motor
+        return self.motor + self.shafts + self.load
+
+    @property
+    def drive(self) -> float:
+        """The rotating part of J, without the load [kg·m²]."""
+        return max(self.total - self.load, self.motor)
+
+
+def reduced_inertia(case: Case, motor_speed: float) -> Inertia:
+    drive = case.drive
+    shafts = sum(s.inertia * s.speed_ratio(motor_speed) ** 2 for s in drive.shafts)  # (7.30)
+    load = case.load.mass * (case.load.lifting_speed / motor_speed) ** 2
+    return Inertia(
+        drive.motor_inertia, shafts, load, not drive.shafts, drive.inertia_estimate_factor
+    )
+
+
+# ------------------------------------------------------------------------- start
+
+
+@dataclass(frozen=True)
+class StartMotion:
+    time: float  # t_p [s]
+    angular_acceleration: float  # ω1/t_p [rad/s²]
+    inertia_torque: float  # J·ω1/t_p [N·m]
+    starting_torque: float  # [N·m]
+    load_acceleration: float  # V/t_p [m/s²]
+
+
+def start_motion(case: Case, st: Steady, inertia: float) -> StartMotion | None:
+    """Uniform start (7.28), (7.32); None when the catalogue torque cannot start the load."""
+    omega = st.motor_speed
+    if case.start.time is not None:
+        t_p = case.start.time
+        torque = st.static_torque + inertia * omega / t_p
+    else:
+        assert case.start.starting_torque is not None
+        torque = case.start.starting_torque
+        if torque <= st.static_torque:
+            return None
+        t_p = inertia * omega / (torque - st.static_torque)
+    return StartMotion(
+        t_p, omega / t_p, torque - st.static_torque, torque, case.load.lifting_speed / t_p
+    )
+
+
+def inertia_methods(case: Case, st: Steady, inertia: Inertia) -> MethodsTable:
+    """(7.30) against the estimate (7.31) at both ends of its range."""
+    from_time = case.start.time is not None
+    key = "starting_torque" if from_time else "start_time"
+    quantities = [
+        MethodQuantity("reduced_inertia", "J", "kg·m²"),
+        MethodQuantity(key, "M_start" if from_time else "t_p", "N·m" if from_time else "s"),
+    ]
+
+    def method(j: float) -> dict[str, float]:
+        motion = start_motion(case, st, j)
+        if motion is None:
+            raise NotApplicable("the starting torque does not exceed the static torque")
+        return {"reduced_inertia": j, key: motion.starting_torque if from_time else motion.time}
+
+    return compare(
+        "Methods: reduced inertia",
+        "inertia",
+        quantities,
+        [
+            Method("kinetic energy (7.30)", lambda: method(inertia.total), reference=True),
+            Method("estimate 1.1·J1 (7.31)", lambda: method(1.1 * inertia.motor)),
+            Method("estimate 1.2·J1 (7.31)", lambda: method(1.2 * inertia.motor)),
+        ],
+    )
+
+
+# --------------------------------------------------------------------- rope model
+
+
+@dataclass(frozen=True)
+class RopeScene:
+    c: float  # rope stiffness [N/m]
+    m1: float  # drive mass on the rope line [kg]
+    m2: float  # load mass [kg]
+    weight: float  # G [N]
+    acceleration: float  # V/t_p [m/s²]
+    start_time: float  # t_p [s]
+    slack: float  # [m]
+
+    @property
+    def beta(self) -> float:
+        """Two-mass natural frequency √(c·(1/m1 + 1/m2)) [rad/s]."""
+        return math.sqrt(self.c * (1.0 / self.m1 + 1.0 / self.m2))
+
+    @property
+    def drive_force(self) -> float:
+        """Drive force during the start: G + (m1 + m2)·a [N]."""
+        return self.weight + (self.m1 + self.m2) * self.acceleration
+
+
+def hanging_closed_form(r: RopeScene, beta: float) -> dict[str, float]:
+    """(7.92)-(7.96) corrected: a rectangular force pulse m2·a of length t_p."""
+    peak = r.weight + r.m2 * r.acceleration * rectangular_pulse_peak(beta, r.start_time)
+    return {"peak_force": peak, "dynamic_factor": peak / r.weight}
+
+
+def ground_closed_form(r: RopeScene, heavy_drive: bool) -> dict[str, float]:
+    """Load lying on the ground: slack taken up, load lifts off, first peak.
+
+    Exact for the two-mass model while the start lasts past the first peak. With
+    ``heavy_drive`` the drive follows the uniform start exactly (m1 → ∞).
+    """
+    g_force, c, a = r.weight, r.c, r.acceleration
+    if heavy_drive:
+        # Drum end moves as a·t²/2: taut at s, lift-off at s + G/c.
+        speed = math.sqrt(2.0 * a * (r.slack + g_force / c))
+        t_lift = speed / a
+        beta = math.sqrt(c / r.m2)
+    else:
+        force = r.drive_force
+        t_slack = math.sqrt(2.0 * r.slack * r.m1 / force)
+        v_slack = force / r.m1 * t_slack
+        beta1 = math.sqrt(c / r.m1)
+        # Drive on the rope with the load grounded: c·ξ = F - R·cos(β1·τ + θ).
+        amplitude = math.hypot(force, c * v_slack / beta1)
+        theta = math.atan2(c * v_slack / beta1, force)
+        tau = (math.acos((force - g_force) / amplitude) - theta) / beta1
+        speed = amplitude * beta1 / c * math.sin(beta1 * tau + theta)
+        t_lift = t_slack + tau
+        beta = r.beta
+    if t_lift > r.start_time:
+        raise NotApplicable("the load lifts off after the start has ended")
+    # After lift-off the rope force oscillates about G + m2·a at β.
+    w0 = -r.m2 * a / c
+    phase = math.atan2(speed / beta, w0)
+    if t_lift + phase / beta > r.start_time:
+        raise NotApplicable("the first peak comes after the start has ended")
+    peak = g_force + r.m2 * a + c * math.hypot(w0, speed / beta)
+    return {"peak_force": peak, "dynamic_factor": peak / g_force}
+
+
+def rope_ode(r: RopeScene, hanging: bool, rtol: float) -> dict[str, float]:
+    """Integrate the two-mass model with ground contact, slack rope and the drive switch.
+
+    State [x1, v1, y, vy]: drive and load positions on the rope line; rope force
+    c·max(x1 - y - s, 0). Hanging: the rope starts stretched by G/c and there is no
+    ground. On the ground: the load rests until the rope force reaches G.
+    """
+    import numpy as np
+
+    from mdcalc.core.ode import advance, pick_solver
+
+    c, m1, m2, s, gw = r.c, r.m1, r.m2, r.slack, r.weight
+    t_p, beta = r.start_time, r.beta
+    period = 2.0 * math.pi / beta
+    if (t_p + 2.0 * period) / period > MAX_ODE_PERIODS:
+        raise NotApplicable(f"more than {MAX_ODE_PERIODS} rope periods in the start")
+
+    def drive(t: float) -> float:
+        return r.drive_force if t < t_p else gw
+
+    def tension(y: np.ndarray) -> float:
+        return c * max(y[0] - y[2] - s, 0.0)
+
+    def air(t: float, y: np.ndarray) -> np.ndarray:
+        f = tension(y)
+        return np.array([y[1], (drive(t) - f) / m1, y[3], (f - gw) / m2])
+
+    def ground(t: float, y: np.ndarray) -> np.ndarray:
+        return np.array([y[1], (drive(t) - tension(y)) / m1, 0.0, 0.0])
+
+    def stretch_rate(t: float, y: np.ndarray) -> float:
+        return float(y[1] - y[3])
+
+    method = pick_solver(rtol)
+    scale = max(r.drive_force / c + s, 1e-12)
+    atol = np.array([scale, scale * beta, scale, scale * beta]) * rtol * 1e-2
+    if hanging:
+        t, y, on_ground = 0.0, np.array([s + gw / c, 0.0, 0.0, 0.0]), False
+    else:
+        t, y, on_ground = 0.0, np.zeros(4), True
+    peak = tension(y)
+    t_lift = 0.0 if hanging else math.inf
+    for _ in range(10_000):
+        t_end = t_p if t < t_p else max(t_p, t_lift) + 2.0 * period
+        if on_ground and t >= t_p:
+            t_end = t + 4.0 * math.pi * math.sqrt(m1 / c) + 2.0 * period
+        if t >= t_end and not on_ground:
+            return {"peak_force": peak, "dynamic_factor": peak / gw}
+        if on_ground:
+            segment = advance(
+                ground,
+                t,
+                y,
+                t_end,
+                rtol=rtol,
+                atol=atol,
+                method=method,
+                terminal=[(lambda t, y: tension(y) - gw, 1)],
+                watch=[(stretch_rate, -1)],
+            )
+        else:
+            segment = advance(
+                air,
+                t,
+                y,
+                t_end,
+                rtol=rtol,
+                atol=atol,
+                method=method,
+                terminal=[(lambda t, y: y[2], -1)] if not hanging else [],
+                watch=[(stretch_rate, -1)],
+            )
+        for _, _, state in segment.hits:
+            peak = max(peak, tension(state))
+        t, y = segment.t, segment.y
+        peak = max(peak, tension(y))
+        if segment.event is not None:
+            if on_ground:  # lift-off
+                on_ground, t_lift = False, t
+            else:  # touch-down: the load stops on the ground
+                on_ground, y = True, np.array([y[0], y[1], 0.0, 0.0])
+    raise ArithmeticError("the rope ODE run did not settle")
+
+
+ROPE_QUANTITIES = [
+    MethodQuantity("peak_force", "F_max", "N"),
+    MethodQuantity("dynamic_factor", "ψ", ""),
+]
+
+
+def rope_methods(r: RopeScene, hanging: bool) -> MethodsTable:
+    heavy_beta = math.sqrt(r.c / r.m2)
+    if hanging:
+        methods = [
+            Method(
+                "lecture (7.95): G + 2·m2·V/t_p",
+                lambda: _factor(r, r.weight + 2.0 * r.m2 * r.acceleration),
+            ),
+            Method(
+                "closed form, heavy drive β = √(c/m2)", lambda: hanging_closed_form(r, heavy_beta)
+            ),
+            Method(
+                "closed form, two-mass β (exact)",
+                lambda: hanging_closed_form(r, r.beta),
+                reference=True,
+            ),
+            Method("ODE RK45, rtol 1e-3", lambda: rope_ode(r, True, 1e-3), imports=ODE_IMPORTS),
+            Method("ODE RK45, rtol 1e-6", lambda: rope_ode(r, True, 1e-6), imports=ODE_IMPORTS),
+        ]
+        title, key = "Methods: rope, load hanging at start", "rope_hanging"
+    else:
+        methods = [
+            Method(
+                "lecture (7.98): 2·(G + m2·V/t_p)",
+                lambda: _factor(r, 2.0 * (r.weight + r.m2 * r.acceleration)),
+            ),
+            Method("closed form, heavy drive", lambda: ground_closed_form(r, True)),
+            Method("closed form, two-mass", lambda: ground_closed_form(r, False)),
+            Method("ODE RK45, rtol 1e-3", lambda: rope_ode(r, False, 1e-3), imports=ODE_IMPORTS),
+            Method("ODE RK45, rtol 1e-6", lambda: rope_ode(r, False, 1e-6), imports=ODE_IMPORTS),
+            Method(
+                "ODE DOP853, rtol 1e-10",
+                lambda: rope_ode(r, False, 1e-10),
+                imports=ODE_IMPORTS,
+                reference=True,
+            ),
+        ]
+        title, key = "Methods: rope, load lying on the ground", "rope_ground"
+    return compare(title, key, ROPE_QUANTITIES, methods)
+
+
+def _factor(r: RopeScene, peak: float) -> dict[str, float]:
+    return {"peak_force": peak, "dynamic_factor": peak / r.weight}
+
+
+# ------------------------------------------------------------------------- result
+
+
+@dataclass
+class Result:
+    case: Case
+    steady: Steady
+    inertia: Inertia
+    start: StartMotion | None
+    allowable: Range | None
+    inertia_table: MethodsTable | None
+    rope: RopeScene | None
+    rope_hanging: MethodsTable | None
+    rope_ground: MethodsTable | None
+    status: Literal["ok", "no-answer"] = "ok"
+    message: str | None = None
+
+
+def solve(case: Case) -> Result:
+    st = steady(case)
+    inertia = reduced_inertia(case, st.motor_speed)
+    motion = start_motion(case, st, inertia.total)
+    allowable = None
+    if case.start.allowable_acceleration is None:
+        allowable = HOIST_ACCELERATION[case.start.machine]
+    result = Result(case, st, inertia, motion, allowable, None, None, None, None)
+    if not inertia.estimated:
+        result.inertia_table = inertia_methods(case, st, inertia)
+    if motion is None:
+        result.status = "no-answer"
+        result.message = (
+            f"the motor cannot start the load: starting torque {case.start.starting_torque:g} N·m "
+            f"does not exceed the static torque M_c = {st.static_torque:.4g} N·m"
+        )
+        return result
+    if case.rope is not None:
+        m1 = case.rope.drive_mass
+        if m1 is None:
+            m1 = inertia.drive * (st.motor_speed / case.load.lifting_speed) ** 2
+        rope = RopeScene(
+            c=case.rope.c,
+            m1=m1,
+            m2=case.load.mass,
+            weight=st.weight,
+            acceleration=motion.load_acceleration,
+            start_time=motion.time,
+            slack=case.rope.slack_length,
+        )
+        result.rope = rope
+        result.rope_hanging = rope_methods(rope, hanging=True)
+        result.rope_ground = rope_methods(rope, hanging=False)
+    return result
+
+
+def _reference(table: MethodsTable, key: str) -> float:
+    value = next(row for row in table.rows if row.reference).values[key]
+    assert value is not None
+    return value
+
+
+# ------------------------------------------------------------------------- report
+
+
+def report(result: Result) -> Report:
+    case, st, inertia, motion = result.case, result.steady, result.inertia, result.start
+    notes: list[Note] = []
+    sections: list[Any] = [
+        Quantities(
+            "Steady lifting",
+            [
+                Quantity("weight", "Load weight G", st.weight, "N"),
+                Quantity("total_efficiency", "Total efficiency η", st.efficiency, ""),
+                Quantity(
+                    "useful_power", "Useful power N_p = G·V (7.25)", st.useful_power / 1e3, "kW"
+                ),
+                Quantity(
+                    "motor_power", "Motor power N_d = N_p/η (7.24)", st.motor_power / 1e3, "kW"
+                ),
+                Quantity("motor_speed", "Motor angular speed ω1", st.motor_speed, "rad/s"),
+                Quantity(
+                    "static_torque",
+                    "Static torque M_c = G·V/(ω1·η) (7.26)",
+                    st.static_torque,
+                    "N·m",
+                ),
+            ],
+        ),
+        Quantities(
+            "Brake on the motor shaft",
+            [
+                Quantity(
+                    "brake_torque",
+                    f"Brake torque K_t·M_c (7.27), K_t = {case.drive.brake_safety_factor:g}",
+                    st.brake_torque,
+                    "N·m",
+                ),
+                Quantity(
+                    "lowering_torque",
+                    "Load torque when lowering G·V·η/ω1",
+                    st.lowering_torque,
+                    "N·m",
+                ),
+                Quantity(
+                    "brake_margin",
+                    "Brake margin over the lowering torque",
+                    st.brake_torque / st.lowering_torque,
+                    "",
+                ),
+            ],
+        ),
+    ]
+    k_t = BRAKE_SAFETY_FACTOR
+    if not k_t.low <= case.drive.brake_safety_factor <= k_t.high:
+        notes.append(
+            Note(
+                "warning",
+                f"K_t = {case.drive.brake_safety_factor:g} is outside the "
+                f"usual {k_t.low:g}…{k_t.high:g} of the duty classes",
+            )
+        )
+    j_items = [Quantity("motor_inertia", "Motor shaft J1", inertia.motor, "kg·m²")]
+    if inertia.estimated:
+        j_items.append(
+            Quantity(
+                "reduced_inertia",
+                f"J ≈ {inertia.factor:g}·J1 (7.31)",
+                inertia.total,
+                "kg·m²",
+                "no other shafts given",
+            )
+        )
+    else:
+        j_items += [
+            Quantity("shaft_inertia", "Other shafts Σ J_k·(ω_k/ω1)²", inertia.shafts, "kg·m²"),
+            Quantity("load_inertia", "Load m·(V/ω1)²", inertia.load, "kg·m²"),
+            Quantity("reduced_inertia", "Reduced inertia J (7.30)", inertia.total, "kg·m²"),
+            Quantity(
+                "inertia_ratio",
+                "J/J1 (the lecture says 1.1…1.2)",
+                inertia.total / inertia.motor,
+                "",
+            ),
+        ]
+    sections.append(Quantities("Reduced moment of inertia on the motor shaft", j_items))
+    if motion is not None:
+        given_time = case.start.time is not None
+        items = [
+            Quantity(
+                "start_time",
+                "Start time t_p" + ("" if given_time else " = J·ω1/(M_start − M_c)"),
+                motion.time,
+                "s",
+            ),
+            Quantity(
+                "angular_acceleration",
+                "Motor acceleration ω1/t_p (7.32)",
+                motion.angular_acceleration,
+                "rad/s²",
+            ),
+            Quantity("inertia_torque", "Inertia torque J·ω1/t_p", motion.inertia_torque, "N·m"),
+            Quantity(
+                "starting_torque",
+                "Starting torque M_c + J·ω1/t_p (7.28)",
+                motion.starting_torque,
+                "N·m",
+            ),
+            Quantity(
+                "load_acceleration", "Load acceleration V/t_p", motion.load_acceleration, "m/s²"
+            ),
+        ]
+        a = motion.load_acceleration
+        if result.allowable is not None:
+            low, high = result.allowable.low, result.allowable.high
+            label = f"allowable for a {case.start.machine}: {low:g}…{high:g} m/s²"
+        else:
+            assert case.start.allowable_acceleration is not None
+            low, high = 0.0, case.start.allowable_acceleration
+            label = f"allowable: ≤ {high:g} m/s²"
+        ok = a <= high
+        items.append(
+            Quantity("acceleration_ok", "Within the allowable acceleration", ok, "", label)
+        )
+        if not ok:
+            notes.append(
+                Note(
+                    "warning",
+                    f"the load accelerates at {a:.3g} m/s², above the {label}: lengthen the start",
+                )
+            )
+        elif a < low:
+            notes.append(
+                Note(
+                    "info",
+                    f"the load accelerates at {a:.3g} m/s², below the usual "
+                    f"{low:g} m/s² for a {case.start.machine}: a slow start",
+                )
+            )
+        sections.append(Quantities("Start", items))
+    if result.inertia_table is not None:
+        sections.append(result.inertia_table)
+    if result.rope is not None and result.rope_hanging and result.rope_ground:
+        r = result.rope
+        beta = r.beta
+        sections.append(
+            Quantities(
+                "Rope at start (two-mass model)",
+                [
+                    Quantity("rope_stiffness", "Rope stiffness c", r.c, "N/m"),
+                    Quantity("drive_mass", "Drive mass on the rope line m1", r.m1, "kg"),
+                    Quantity(
+                        "rope_frequency", "Natural frequency β = √(c·(1/m1 + 1/m2))", beta, "rad/s"
+                    ),
+                    Quantity(
+                        "half_period", "Half period π/β (compare with t_p)", math.pi / beta, "s"
+                    ),
+                    Quantity(
+                        "hanging_peak_force",
+                        "Peak rope force, load hanging",
+                        _reference(result.rope_hanging, "peak_force"),
+                        "N",
+                    ),
+                    Quantity(
+                        "hanging_dynamic_factor",
+                        "Dynamic factor ψ, load hanging",
+                        _reference(result.rope_hanging, "dynamic_factor"),
+                        "",
+                    ),
+                    Quantity(
+                        "ground_peak_force",
+                        "Peak rope force, load lifted off the ground",
+                        _reference(result.rope_ground, "peak_force"),
+                        "N",
+                    ),
+                    Quantity(
+                        "ground_dynamic_factor",
+                        "Dynamic factor ψ, load lifted off the ground",
+                        _reference(result.rope_ground, "dynamic_factor"),
+                        "",
+                    ),
+                ],
+            )
+        )
+        sections += [result.rope_hanging, result.rope_ground]
+    title = case.title or "Hoist motor and brake"
+    return Report("hoist", title, sections, notes, result.status, result.message)
+
+
+def template() -> dict[str, Any]:
+    return {
+        "problem": "hoist",
+        "title": "Overhead crane main hoist, 10 t",
+        "load": {"mass": 10000.0, "lifting_speed": 0.2},
+        "drive": {
+            "motor_speed_rpm": 960.0,
+            "motor_inertia": 0.35,
+            "stage_efficiencies": [0.97, 0.97, 0.98],
+            "pulley_efficiency": 0.97,
+            "brake_safety_factor": 1.75,
+        },
+        "start": {"time": 1.5, "machine": "crane"},
+    }

@@ -1,0 +1,63 @@
+"""Run one case file through its problem: read, validate, solve, report.
+
+Shared by the problem commands and ``mdcalc check``; raises
+:class:`~mdcalc.errors.InputError` for anything wrong with the input.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from mdcalc.casefile import CaseText, read_case, validate
+from mdcalc.errors import InputError, Problem
+from mdcalc.problems import PROBLEMS, ProblemSpec
+from mdcalc.report import Report
+
+
+def problem_of(case: CaseText) -> ProblemSpec:
+    """The problem named by the case file's ``problem = "..."`` key."""
+    name = case.data.get("problem")
+    if name is None:
+        raise InputError(
+            case.path,
+            [
+                Problem(
+                    f'missing; a case file starts with problem = "<{"|".join(PROBLEMS)}>"',
+                    "problem",
+                )
+            ],
+        )
+    if not isinstance(name, str) or name not in PROBLEMS:
+        raise InputError(
+            case.path,
+            [
+                Problem(
+                    f"got {name!r}; allowed: {', '.join(repr(p) for p in PROBLEMS)}",
+                    "problem",
+                    case.line_of(("problem",)),
+                )
+            ],
+        )
+    return PROBLEMS[name]
+
+
+def run_case(path: Path, expected_problem: str | None = None) -> Report:
+    case = read_case(path)
+    spec = problem_of(case)
+    if expected_problem is not None and spec.name != expected_problem:
+        raise InputError(
+            path,
+            [
+                Problem(
+                    f"this case is for '{spec.name}', not '{expected_problem}' "
+                    f"(run: mdcalc {spec.name} {path})",
+                    "problem",
+                    case.line_of(("problem",)),
+                )
+            ],
+        )
+    module = spec.load()
+    model = validate(module.Case, case)
+    report = module.report(module.solve(model))
+    report.case = str(path)
+    return report
