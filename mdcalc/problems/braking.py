@@ -543,6 +543,7 @@ def report(result: Result) -> Report:
         )
         if lock:
             notes.append(Note("warning", _lock_warning(scene)))
+    sections.append(Quantities("Adhesion check", adhesion_items))
 
     stop_items = [
         Quantity("braking_force", "Brake force through the tyres F_b", scene.brake_force, "N"),
