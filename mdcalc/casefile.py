@@ -133,7 +133,7 @@ def _walk(model: type[BaseModel], loc: tuple[str | int, ...]) -> tuple[Any, Any]
             continue
         fields = getattr(current, "model_fields", None)
         if fields is None or part not in fields:
-            return holder if holder is not None else current, None
+            return current, None  # an unknown key: ``current`` is where it was written
         holder, info = current, fields[part]
         current = _inner_model(info.annotation)
     return holder, info
@@ -193,6 +193,7 @@ def _problem_from_error(model: type[BaseModel], case: CaseText, err: Any) -> Pro
     if kind in ("greater_than", "greater_than_equal", "less_than", "less_than_equal"):
         op = {"greater_than": ">", "greater_than_equal": ">=", "less_than": "<"}.get(kind, "<=")
         bound = next(iter(ctx.values()))
+        bound = f"{bound:g}" if isinstance(bound, float) else bound
         return Problem(f"got {_show(value)}; must be {op} {bound}{unit_text}", path, line)
     if kind == "finite_number":
         return Problem(f"got {_show(value)}; must be a finite number{unit_text}", path, line)

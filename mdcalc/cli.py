@@ -116,7 +116,7 @@ def check_command(
         outcome = check_paths(paths)
         table = Table(title="mdcalc check", title_justify="left")
         for column in ("file", "result", "expected", "got", "tolerance", ""):
-            table.add_column(column)
+            table.add_column(column, overflow="fold")
         for row in outcome.rows:
             mark = "[green]pass[/green]" if row.passed else "[bold red]FAIL[/bold red]"
             table.add_row(row.file, row.key, row.expected, row.got, row.tolerance, mark)

@@ -10,11 +10,15 @@ from __future__ import annotations
 
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
 
-import numpy as np
+if TYPE_CHECKING:
+    import numpy as np
 
-Rhs = Callable[[float, np.ndarray], np.ndarray]
-Event = Callable[[float, np.ndarray], float]
+# numpy and scipy are imported inside the functions: importing this module (for
+# IMPORTS or pick_solver) costs a closed-form scene nothing.
+Rhs = Callable[[float, "np.ndarray"], "np.ndarray"]
+Event = Callable[[float, "np.ndarray"], float]
 
 #: Solvers by stiffness: explicit for oscillatory non-stiff models, implicit for
 #: stiff ones (stiffness ratios of 1e3 and more).
@@ -62,9 +66,10 @@ def advance(
     ``terminal`` and ``watch`` hold (event function, direction) pairs; ``watch``
     events are recorded (for maxima: a zero of the derivative) without stopping.
     """
+    import numpy as np
     from scipy.integrate import solve_ivp
 
-    events: list[Callable[[float, np.ndarray], float]] = []
+    events: list[Any] = []
     for function, direction in terminal:
         events.append(_event(function, direction, True))
     for function, direction in watch:

@@ -599,14 +599,15 @@ def report(result: Result) -> Report:
 def _lock_warning(scene: Scene) -> str:
     demanded = scene.demand / scene.mass
     limit = scene.phi * scene.g
+    lecture_time = scene.v0 * scene.mass / scene.demand
     text = (
         f"the brakes demand {demanded:.4g} m/s² = {demanded / scene.g:.3g}·g, more than "
         f"adhesion allows on this road (φ·g = {limit:.4g} m/s²): the wheels lock and the car "
-        f"slides; the braking distance is at least {scene.v0**2 / (2.0 * limit):.4g} m, not "
-        f"the lecture's {scene.v0**2 * scene.mass / (2.0 * scene.demand):.4g} m"
+        f"slides; the braking distance is at least {scene.v0**2 / (2.0 * limit):.3g} m, not "
+        f"the {0.5 * scene.v0 * lecture_time:.3g} m in {lecture_time:.3g} s of (7.48)"
     )
     if demanded > 0.9 * scene.g:
-        text += " (no road surface gives more than φ = 0.9)"
+        text += "; no road surface gives more than φ = 0.9"
     return text
 
 

@@ -1,0 +1,41 @@
+"""Case-file reading: key lines for messages, TOML writing."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from mdcalc.casefile import _key_lines, write_toml_atomic
+from mdcalc.errors import InputError
+
+
+def test_key_lines_follow_tables_and_arrays_of_tables():
+    text = """problem = "hoist"
+# comment
+[load]
+mass = 1.0
+
+[[drive.shafts]]
+name = "a"
+
+[[drive.shafts]]
+name = "b"
+"""
+    lines = _key_lines(text)
+    assert lines[("problem",)] == 1
+    assert lines[("load",)] == 3
+    assert lines[("load", "mass")] == 4
+    assert lines[("drive", "shafts", 0, "name")] == 7
+    assert lines[("drive", "shafts", 1, "name")] == 10
+
+
+def test_write_toml_atomic_never_overwrites(tmp_path: Path):
+    path = tmp_path / "x.toml"
+    write_toml_atomic(path, {"a": 1})
+    assert path.read_text() == "a = 1\n"
+    with pytest.raises(InputError):
+        write_toml_atomic(path, {"a": 2})
+    write_toml_atomic(path, {"a": 2}, force=True)
+    assert path.read_text() == "a = 2\n"
+    assert [p.name for p in tmp_path.iterdir()] == ["x.toml"]  # no temporary left behind

@@ -1,0 +1,47 @@
+"""Closed-form commands and --help must not pay for heavy imports."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+
+from tests.conftest import CASES
+
+PROBE = """
+import sys
+sys.argv = ["mdcalc", *{args!r}]
+from mdcalc.cli import main
+try:
+    main()
+except SystemExit:
+    pass
+heavy = sorted({{m.split(".")[0] for m in sys.modules}} & {{"scipy", "matplotlib", "pint"}})
+print("HEAVY", heavy, file=sys.stderr)
+"""
+
+
+def heavy_modules(*args: str) -> str:
+    done = subprocess.run(
+        [sys.executable, "-c", PROBE.format(args=list(args))],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
+    return done.stderr.strip().splitlines()[-1]
+
+
+def test_help_imports_nothing_heavy():
+    assert heavy_modules("--help") == "HEAVY []"
+
+
+def test_closed_form_braking_does_not_import_scipy():
+    assert heavy_modules("braking", str(CASES / "braking" / "lecture.toml")) == "HEAVY []"
+
+
+def test_hoist_without_rope_does_not_import_scipy():
+    assert heavy_modules("hoist", str(CASES / "hoist" / "lift.toml")) == "HEAVY []"
+
+
+def test_drag_scene_does_use_scipy():
+    # The guard above can fail: with drag the ODE methods run.
+    assert heavy_modules("braking", str(CASES / "braking" / "drag.toml")) == "HEAVY ['scipy']"
