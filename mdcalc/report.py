@@ -263,8 +263,11 @@ def _(section: Table) -> Any:
     from rich.table import Table as RichTable
 
     table = RichTable(title=section.title, title_justify="left")
-    for c in section.columns:
-        table.add_column(f"{c.label} ({c.unit})" if c.unit else c.label, justify="right")
+    first = section.rows[0] if section.rows else []
+    for i, c in enumerate(section.columns):
+        text = i < len(first) and isinstance(first[i], str)
+        label = f"{c.label} ({c.unit})" if c.unit else c.label
+        table.add_column(label, justify="left" if text else "right")
     for row in section.rows:
         table.add_row(*(format_value(v) for v in row))
     return table

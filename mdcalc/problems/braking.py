@@ -559,17 +559,17 @@ def report(result: Result) -> Report:
         stop_items += [
             Quantity(
                 "reaction_distance",
-                f"Reaction, {scene.reaction_time:g} s",
+                f"Reaction distance, {scene.reaction_time:g} s",
                 p.reaction.distance,
                 "m",
             ),
             Quantity(
                 "build_up_distance",
-                f"Brake build-up, {scene.build_up_time:g} s",
+                f"Build-up distance, {scene.build_up_time:g} s",
                 p.build_up.distance,
                 "m",
             ),
-            Quantity("braking_distance", "Full braking", p.braking.distance, "m"),
+            Quantity("braking_distance", "Full-braking distance", p.braking.distance, "m"),
         ]
     stop_items += [
         Quantity("stopping_distance", "Stopping distance", result.stop["stopping_distance"], "m"),
