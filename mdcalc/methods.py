@@ -79,7 +79,7 @@ def compare(
         except NotApplicable as reason:
             if method.reference:
                 raise
-            rows.append(MethodRow(method.name, {}, {}, 0.0, False, f"not applicable: {reason}"))
+            rows.append(MethodRow(method.name, {}, {}, None, False, f"not applicable: {reason}"))
             continue
         for k, v in values.items():
             if not math.isfinite(v):

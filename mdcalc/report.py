@@ -80,7 +80,7 @@ class MethodRow:
     method: str
     values: dict[str, float | None]
     rel_errors: dict[str, float | None]
-    seconds: float
+    seconds: float | None  # None: the method did not run (not applicable)
     reference: bool = False
     note: str = ""
 
@@ -153,7 +153,9 @@ def format_error(error: float | None) -> str:
     return f"{error:.1e}"
 
 
-def format_seconds(seconds: float) -> str:
+def format_seconds(seconds: float | None) -> str:
+    if seconds is None:
+        return "—"
     if seconds < 1e-3:
         return f"{seconds * 1e6:.3g} µs"
     if seconds < 1:
