@@ -26,33 +26,13 @@ from typing import Any
 import numpy as np
 import pytest
 from scipy.integrate import quad, solve_ivp
+from tomli_w import dumps as toml_dumps
 
 from mdcalc.runner import run_case
 
 TIGHT = 1e-9  # relative tolerance against exact closed forms
 
 # ----------------------------------------------------------------------------- helpers
-
-
-def _toml_value(value: Any) -> str:
-    if isinstance(value, bool):
-        return "true" if value else "false"
-    if isinstance(value, int | float):
-        return repr(value)
-    if isinstance(value, str):
-        return json.dumps(value)
-    if isinstance(value, list):
-        return "[" + ", ".join(_toml_value(v) for v in value) + "]"
-    raise TypeError(value)
-
-
-def toml_dumps(data: dict[str, Any]) -> str:
-    out = [f"{k} = {_toml_value(v)}" for k, v in data.items() if not isinstance(v, dict)]
-    for key, value in data.items():
-        if isinstance(value, dict):
-            out.append(f"\n[{key}]")
-            out += [f"{k} = {_toml_value(v)}" for k, v in value.items()]
-    return "\n".join(out) + "\n"
 
 
 def write_case(tmp_path: Path, data: dict[str, Any]) -> Path:

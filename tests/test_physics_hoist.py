@@ -23,48 +23,13 @@ from typing import Any
 import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
+from tomli_w import dumps as toml_dumps
 
 from mdcalc.runner import run_case
 
 TIGHT = 1e-9  # relative tolerance against exact closed forms
 
 # ----------------------------------------------------------------------------- helpers
-
-
-def _toml_value(value: Any) -> str:
-    if isinstance(value, bool):
-        return "true" if value else "false"
-    if isinstance(value, int | float):
-        return repr(value)
-    if isinstance(value, str):
-        return json.dumps(value)
-    if isinstance(value, list):
-        return "[" + ", ".join(_toml_value(v) for v in value) + "]"
-    raise TypeError(value)
-
-
-def _toml_table(data: dict[str, Any], prefix: str, out: list[str]) -> None:
-    def is_table_list(v: Any) -> bool:
-        return isinstance(v, list) and bool(v) and all(isinstance(i, dict) for i in v)
-
-    for key, value in data.items():
-        if not isinstance(value, dict) and not is_table_list(value):
-            out.append(f"{key} = {_toml_value(value)}")
-    for key, value in data.items():
-        name = f"{prefix}.{key}" if prefix else key
-        if isinstance(value, dict):
-            out.append(f"\n[{name}]")
-            _toml_table(value, name, out)
-        elif is_table_list(value):
-            for item in value:
-                out.append(f"\n[[{name}]]")
-                _toml_table(item, name, out)
-
-
-def toml_dumps(data: dict[str, Any]) -> str:
-    out: list[str] = []
-    _toml_table(data, "", out)
-    return "\n".join(out) + "\n"
 
 
 def write_case(tmp_path: Path, data: dict[str, Any], name: str = "case.toml") -> Path:
