@@ -87,7 +87,9 @@ def run_problem(spec: ProblemSpec, case: Path, as_json: bool, debug: bool) -> in
 
 def _make_problem_command(spec: ProblemSpec) -> Callable[..., None]:
     def command(
-        case: Annotated[Path, typer.Argument(help="Case file (TOML).", show_default=False)],
+        case: Annotated[
+            Path, typer.Argument(help="Case file (TOML).", show_default=False, metavar="CASE.toml")
+        ],
         as_json: JsonOption = False,
         debug: DebugOption = False,
     ) -> None:
