@@ -13,7 +13,7 @@ from mdcalc.casefile import read_case
 from mdcalc.errors import InputError
 from mdcalc.model import CaseBase, Expectation
 from mdcalc.report import Value, format_value
-from mdcalc.runner import run_case
+from mdcalc.runner import run_text
 
 
 @dataclass
@@ -83,8 +83,8 @@ def check_file(path: Path, outcome: CheckOutcome) -> None:
         if "expect" not in case.data:
             outcome.files_skipped += 1
             return
-        report = run_case(path)
-        # run_case validated the whole file, so the [expect] table is valid here.
+        report = run_text(case)
+        # run_text validated the whole file, so the [expect] table is valid here.
         expectations = CaseBase.model_validate({"expect": case.data["expect"]}).expect or {}
     except InputError as exc:
         outcome.input_errors.append(str(exc))

@@ -42,7 +42,12 @@ def problem_of(case: CaseText) -> ProblemSpec:
 
 
 def run_case(path: Path, expected_problem: str | None = None) -> Report:
-    case = read_case(path)
+    return run_text(read_case(path), expected_problem)
+
+
+def run_text(case: CaseText, expected_problem: str | None = None) -> Report:
+    """Validate, solve and report a case file already read."""
+    path = case.path
     spec = problem_of(case)
     if expected_problem is not None and spec.name != expected_problem:
         raise InputError(
