@@ -43,3 +43,11 @@ class CaseBase(CaseModel):
     expect: dict[str, Expectation] | None = Field(
         default=None, description="Expected results, checked by `mdcalc check`"
     )
+
+
+def exactly_one(owner: str, **given: object) -> None:
+    """Model-validator helper: exactly one of the named alternatives is given."""
+    named = [k for k, v in given.items() if v is not None]
+    if len(named) != 1:
+        keys = " or ".join(given)
+        raise ValueError(f"give exactly one of {keys} in [{owner}] (got {len(named)})")

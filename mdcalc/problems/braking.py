@@ -14,16 +14,17 @@ the build-up phase does not, and a tight ODE run is then the reference.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field, replace
 from typing import Any, Literal
 
 from pydantic import Field, model_validator
 
+from mdcalc.core.motion import Phase, constant_force_phase, ramp_phase
 from mdcalc.core.ode import IMPORTS as ODE_IMPORTS
 from mdcalc.core.units import STANDARD_GRAVITY, kmh_to_m_s
 from mdcalc.methods import Method, compare
-from mdcalc.model import CaseBase, CaseModel
+from mdcalc.model import CaseBase, CaseModel, exactly_one
+from mdcalc.problems.vehicle import Drag, SurfaceName
 from mdcalc.report import (
     Column,
     MethodQuantity,
@@ -36,19 +37,7 @@ from mdcalc.report import (
 )
 from mdcalc.tables import ROAD_SURFACES
 
-SurfaceName = Literal[
-    "dry-asphalt", "wet-asphalt", "gravel", "dry-dirt", "wet-dirt", "packed-snow", "icy-road", "ice"
-]
-
-
 # ------------------------------------------------------------------------ the case
-
-
-def _exactly_one(owner: str, **given: object) -> None:
-    named = [k for k, v in given.items() if v is not None]
-    if len(named) != 1:
-        keys = " or ".join(given)
-        raise ValueError(f"give exactly one of {keys} in [{owner}] (got {len(named)})")
 
 
 class Vehicle(CaseModel):
@@ -62,7 +51,7 @@ class Vehicle(CaseModel):
 
     @model_validator(mode="after")
     def _one_speed(self) -> Vehicle:
-        _exactly_one(
+        exactly_one(
             "vehicle", initial_speed=self.initial_speed, initial_speed_kmh=self.initial_speed_kmh
         )
         return self
@@ -96,7 +85,7 @@ class Brakes(CaseModel):
             if self.traction_force is None or self.force_multiple is None:
                 raise ValueError("traction_force and force_multiple go together (P_T = k·P_D)")
             lecture = self.traction_force * self.force_multiple
-        _exactly_one(
+        exactly_one(
             "brakes",
             force=self.force,
             deceleration=self.deceleration,
@@ -130,7 +119,7 @@ class Road(CaseModel):
 
     @model_validator(mode="after")
     def _one_adhesion(self) -> Road:
-        _exactly_one("road", surface=self.surface, adhesion=self.adhesion)
+        exactly_one("road", surface=self.surface, adhesion=self.adhesion)
         return self
 
     @property
@@ -139,17 +128,6 @@ class Road(CaseModel):
             return self.adhesion
         assert self.surface is not None
         return ROAD_SURFACES[self.surface].low
-
-
-class Drag(CaseModel):
-    drag_coefficient: float = Field(gt=0, le=3, description="Drag coefficient C_x [-]")
-    frontal_area: float = Field(gt=0, le=100, description="Frontal area A [m^2]")
-    air_density: float = Field(default=1.225, gt=0, le=5, description="Air density rho [kg/m^3]")
-
-    @property
-    def factor(self) -> float:
-        """k in F = k·v² [kg/m]."""
-        return 0.5 * self.air_density * self.drag_coefficient * self.frontal_area
 
 
 class Driver(CaseModel):
@@ -167,73 +145,6 @@ class Case(CaseBase):
     road: Road
     drag: Drag | None = None
     driver: Driver | None = None
-
-
-# -------------------------------------------------------------------- closed forms
-
-
-@dataclass(frozen=True)
-class Phase:
-    """Motion over one phase: speed at its end, distance and time it took."""
-
-    speed: float
-    distance: float
-    time: float
-
-    @property
-    def stopped(self) -> bool:
-        return self.speed == 0.0
-
-
-def constant_force_phase(
-    v0: float, force: float, drag: float, mass: float, duration: float | None
-) -> Phase:
-    """m·dv/dt = -(force + drag·v²) from v0 for ``duration`` or until the stop.
-
-    Closed forms: without drag, uniform deceleration; with drag and force > 0,
-    v = s·tan(θ0 - ω·t), s = √(F/k), ω = √(F·k)/m; with drag alone, v = v0/(1 + k·v0·t/m).
-    """
-    if v0 == 0.0:
-        return Phase(0.0, 0.0, 0.0)
-    if drag == 0.0:
-        if force == 0.0:
-            assert duration is not None, "no force and no drag: the car never stops"
-            return Phase(v0, v0 * duration, duration)
-        a = force / mass
-        t_stop = v0 / a
-        if duration is None or duration >= t_stop:
-            return Phase(0.0, v0 * v0 / (2.0 * a), t_stop)
-        return Phase(v0 - a * duration, v0 * duration - 0.5 * a * duration**2, duration)
-    if force == 0.0:
-        assert duration is not None, "drag alone never stops the car"
-        u = drag * v0 * duration / mass
-        return Phase(v0 / (1.0 + u), mass / drag * math.log1p(u), duration)
-    s = math.sqrt(force / drag)
-    omega = math.sqrt(force * drag) / mass
-    theta0 = math.atan(v0 / s)
-    t_stop = theta0 / omega
-    if duration is None or duration >= t_stop:
-        # x = (m/k)·ln(cos(θ0 - ωt)/cos θ0) at the stop: (m/2k)·ln(1 + k·v0²/F)
-        return Phase(0.0, mass / (2.0 * drag) * math.log1p(drag * v0 * v0 / force), t_stop)
-    theta = theta0 - omega * duration
-    distance = mass / drag * math.log(math.cos(theta) / math.cos(theta0))
-    return Phase(s * math.tan(theta), distance, duration)
-
-
-def ramp_phase(v0: float, base: float, rise: float, mass: float, duration: float) -> Phase:
-    """m·dv/dt = -(base + rise·t/duration), no drag: the brake build-up phase."""
-    if v0 == 0.0 or duration == 0.0:
-        return Phase(v0, 0.0, 0.0)
-    a0 = base / mass
-    jerk = rise / (mass * duration)
-    v_end = v0 - a0 * duration - 0.5 * jerk * duration**2
-    if v_end > 0.0:
-        distance = v0 * duration - 0.5 * a0 * duration**2 - jerk * duration**3 / 6.0
-        return Phase(v_end, distance, duration)
-    # Stop inside the ramp: jerk/2·τ² + a0·τ - v0 = 0, the root in a cancellation-free form.
-    tau = 2.0 * v0 / (a0 + math.sqrt(a0 * a0 + 2.0 * jerk * v0))
-    distance = v0 * tau - 0.5 * a0 * tau**2 - jerk * tau**3 / 6.0
-    return Phase(0.0, distance, tau)
 
 
 # ------------------------------------------------------------------------ the scene
