@@ -47,6 +47,8 @@ class Segment:
     nfev: int
     # Non-terminal event hits of the segment: (event index, time, state).
     hits: list[tuple[int, float, np.ndarray]]
+    # Continuous solution over the segment (``dense=True``): state at a time in it.
+    sol: Callable[[float], np.ndarray] | None = None
 
 
 def advance(
@@ -60,11 +62,13 @@ def advance(
     method: str,
     terminal: Sequence[tuple[Event, int]] = (),
     watch: Sequence[tuple[Event, int]] = (),
+    dense: bool = False,
 ) -> Segment:
     """Integrate from ``t0`` to ``t1`` or to the first ``terminal`` event.
 
     ``terminal`` and ``watch`` hold (event function, direction) pairs; ``watch``
     events are recorded (for maxima: a zero of the derivative) without stopping.
+    ``dense`` keeps the continuous solution (for tables of the state over time).
     """
     import numpy as np
     from scipy.integrate import solve_ivp
@@ -77,7 +81,14 @@ def advance(
     if t1 <= t0:
         return Segment(t0, np.array(y0, dtype=float), None, 0, [])
     solution = solve_ivp(
-        rhs, (t0, t1), y0, method=method, rtol=rtol, atol=atol, events=events or None
+        rhs,
+        (t0, t1),
+        y0,
+        method=method,
+        rtol=rtol,
+        atol=atol,
+        events=events or None,
+        dense_output=dense,
     )
     if solution.status < 0:
         raise ArithmeticError(f"{method} failed at t = {solution.t[-1]:.6g} s: {solution.message}")
@@ -93,7 +104,14 @@ def advance(
             hits.extend(
                 (index - len(terminal), float(t), s) for t, s in zip(times, states, strict=True)
             )
-    return Segment(float(solution.t[-1]), solution.y[:, -1].copy(), stopped, solution.nfev, hits)
+    return Segment(
+        float(solution.t[-1]),
+        solution.y[:, -1].copy(),
+        stopped,
+        solution.nfev,
+        hits,
+        solution.sol if dense else None,
+    )
 
 
 def _event(function: Event, direction: int, terminal: bool) -> Event:

@@ -59,6 +59,11 @@ PROBLEMS: dict[str, ProblemSpec] = {
             "Hoist motor and brake: static and start torques, reduced inertia, rope loads.",
         ),
         ProblemSpec(
+            "acceleration",
+            "acceleration",
+            "Car acceleration through the gears: time and distance to a target speed.",
+        ),
+        ProblemSpec(
             "braking",
             "braking",
             "Car braking: time and distance, adhesion limit, road resistance, drag, reaction.",
