@@ -10,8 +10,10 @@ kept so that it reproduces the lecture's 17.49 s; the report says so.
 Physical model: δ·m·dv/dt = F_t - ψ·m·g - k·v², k = ½·ρ·C_x·A, with
 F_t = M_e(n)·U_i·U_K·η/r and n the engine speed the road speed gives in gear i,
 the engine torque M_e from Leiderman's curve (the brief's reading of (7.37)) or a
-table, δ_i = δ_0 + δ_e·U_i² unless given, traction limited by adhesion on the driven
-axle (with load transfer when the centre-of-gravity height is given). The launch
+table, δ_i = δ_0 + δ_e·U_i² unless given. Adhesion limits the tyre force on the
+driven axle to φ·N (N with load transfer when the centre-of-gravity height is
+given); then δ_0·m·dv/dt = φ·N - R, the engine's surplus spinning the engine and
+driveline, and the acceleration is the lesser of the two. The launch
 and any gear whose road speed is below the launch engine speed start with the
 clutch slipping: the engine held at the launch speed passes its torque there, the
 engine's inertia is not accelerated (δ_0). Upshift at the shift engine speed: for
@@ -87,8 +89,10 @@ class Engine(CaseModel):
     max_torque_speed_rpm: float | None = Field(
         default=None, gt=0, description="n_M, engine speed at maximum torque [rpm]"
     )
-    leiderman: tuple[float, float, float] = Field(
-        default=(0.91, 0.9, 0.81),
+    leiderman: list[float] = Field(
+        default=[0.91, 0.9, 0.81],
+        min_length=3,
+        max_length=3,
         description="a, b, c of M = M_N·(a + b·n/n_E - c·(n/n_E)²), seed (7.37) [-]",
     )
     torque_curve: TorqueCurve | None = Field(
@@ -358,7 +362,8 @@ def engine_curve(engine: Engine) -> EngineCurve:
         )
     assert engine.max_power is not None and engine.max_power_speed_rpm is not None
     omega_e = rpm_to_rad_s(engine.max_power_speed_rpm)
-    return EngineCurve((), (), engine.max_power / omega_e, omega_e, engine.leiderman)
+    a, b, c = engine.leiderman
+    return EngineCurve((), (), engine.max_power / omega_e, omega_e, (a, b, c))
 
 
 def engine_speeds(case: Case, curve: EngineCurve) -> tuple[float, float, float]:
@@ -429,27 +434,37 @@ class Scene:
         omega = self.launch if slipping else self.engine_speed(gear, v)
         return self.curve.torque(omega) * self.overall(gear) * self.efficiency / self.radius
 
-    def adhesion_force(self, v: float, delta: float) -> float:
-        """φ·N on the driven axle; N shifts by m·a·h/L with a = (F - R)/(δ·m)."""
+    def adhesion_force(self, v: float) -> float:
+        """φ·N on the driven axle; N shifts by m·a·h/L, a = (F - R)/(δ_0·m)."""
         assert self.phi is not None
         resistance = self.resistance(v)
-        s = self.transfer / delta
+        s = self.transfer / self.delta_free
         return self.phi * (self.axle_load - s * resistance) / (1.0 - s * self.phi)
-
-    def traction(self, gear: int, v: float, slipping: bool) -> tuple[float, bool]:
-        """Traction force [N] and whether adhesion limits it."""
-        force = self.engine_force(gear, v, slipping)
-        if self.phi is None:
-            return force, False
-        grip = self.adhesion_force(v, self.delta(gear, slipping))
-        return (grip, True) if grip < force else (force, False)
 
     def delta(self, gear: int, slipping: bool) -> float:
         return self.delta_free if slipping else self.deltas[gear]
 
-    def acceleration(self, gear: int, v: float, slipping: bool) -> float:
-        force, _ = self.traction(gear, v, slipping)
+    def engine_acceleration(self, gear: int, v: float, slipping: bool) -> float:
+        """(F_t - R)/(δ·m): what the engine gives if the tyres pass it."""
+        force = self.engine_force(gear, v, slipping)
         return (force - self.resistance(v)) / (self.delta(gear, slipping) * self.mass)
+
+    def adhesion_acceleration(self, v: float) -> float:
+        """(φ·N - R)/(δ_0·m): the most the tyres allow. When they limit the car, the
+        engine's surplus turns the engine and driveline, so their inertia (δ_e·U_i²)
+        is not charged to the tyre force; δ_0 keeps the wheels'."""
+        return (self.adhesion_force(v) - self.resistance(v)) / (self.delta_free * self.mass)
+
+    def adhesion_limited(self, gear: int, v: float, slipping: bool) -> bool:
+        if self.phi is None:
+            return False
+        return self.adhesion_acceleration(v) < self.engine_acceleration(gear, v, slipping)
+
+    def acceleration(self, gear: int, v: float, slipping: bool) -> float:
+        a = self.engine_acceleration(gear, v, slipping)
+        if self.phi is None:
+            return a
+        return min(a, self.adhesion_acceleration(v))
 
     def slipping_at(self, gear: int, v: float) -> bool:
         """The clutch slips while the road speed gives less than the launch engine speed."""
@@ -506,6 +521,11 @@ def scene_of(case: Case) -> Scene:
 # ------------------------------------------------------------------------- the plan
 
 
+#: Relative distance below a resistance-limited top speed inside which a target
+#: counts as not reached (see :meth:`GearLimit.allows`).
+ASYMPTOTE_MARGIN = 1e-6
+
+
 @dataclass(frozen=True)
 class GearLimit:
     """How fast a gear can take the car: to the rev limit or to where F_t = R."""
@@ -514,8 +534,12 @@ class GearLimit:
     reason: Literal["rev limit", "resistance"]
 
     def allows(self, v: float) -> bool:
-        """Whether the gear gets the car to speed ``v`` (in finite time)."""
-        return v < self.speed or (self.reason == "rev limit" and v <= self.speed)
+        """Whether the gear gets the car to speed ``v``. Where traction equals
+        resistance the car only approaches the speed (the time grows as the log of
+        1/(v_top - v)); a target within ASYMPTOTE_MARGIN of it counts as not reached."""
+        if self.reason == "rev limit":
+            return v <= self.speed
+        return v < self.speed * (1.0 - ASYMPTOTE_MARGIN)
 
 
 def gear_limit(scene: Scene, gear: int, v_in: float, samples: int = 256) -> GearLimit:
@@ -700,7 +724,7 @@ def drive_through(scene: Scene, stints: list[Stint], drive: DriveStep, shift: Sh
 
 
 def _adhesion_limited(scene: Scene, gear: int, slipping: bool, v0: float, v1: float) -> bool:
-    return any(scene.traction(gear, v, slipping)[1] for v in (v0, 0.5 * (v0 + v1), v1))
+    return any(scene.adhesion_limited(gear, v, slipping) for v in (v0, 0.5 * (v0 + v1), v1))
 
 
 def lecture_run(scene: Scene, traction_coefficient: float, omega_d: float) -> dict[str, Any]:
@@ -777,7 +801,7 @@ def ode_run(scene: Scene, stints: list[Stint], rtol: float, dense: bool = False)
         span = (v1 - v0) / a_min * 1.5 + 1e-3 if a_min > 0.0 else 10.0
         y = np.array([v0, x])
         t0 = t
-        for _ in range(60):
+        for _ in range(4):
             segment = advance(
                 rhs,
                 t,
@@ -795,7 +819,10 @@ def ode_run(scene: Scene, stints: list[Stint], rtol: float, dense: bool = False)
             if segment.event is not None:
                 return t - t0, float(y[1]) - x
             span *= 2.0
-        raise ArithmeticError(f"gear {gear + 1}: the ODE run did not reach {v1:.6g} m/s")
+        raise NotApplicable(
+            f"{method} did not reach {v1 * 3.6:.6g} km/h in gear {gear + 1} within "
+            f"{t - t0:.3g} s: the target is within this tolerance of the top speed"
+        )
 
     def shift(
         scene: Scene, gear: int, v0: float, t: float, x: float, run: Run
@@ -926,6 +953,12 @@ def _no_answer(scene: Scene, the_plan: Plan) -> str:
     if not the_plan.stints and the_plan.limit.speed == 0.0:
         return _cannot_move(scene)
     limit, gear = the_plan.limit, the_plan.limit_gear
+    if scene.target < limit.speed:
+        return (
+            f"target speed {scene.target * 3.6:.7g} km/h lies within {ASYMPTOTE_MARGIN:g} of "
+            f"the top speed {limit.speed * 3.6:.7g} km/h (gear {gear + 1}), which the car only "
+            "approaches: traction equals resistance there and the time to it is unbounded"
+        )
     engine_rpm = scene.engine_speed(gear, limit.speed) * RAD_S_TO_RPM
     where = (
         f"gear {gear + 1} at the rev limit, {engine_rpm:.0f} rpm"
@@ -946,7 +979,7 @@ def _cannot_move(scene: Scene) -> str:
         f"the first-gear traction"
     )
     if scene.phi is not None:
-        grip = scene.adhesion_force(0.0, scene.delta_free)
+        grip = scene.adhesion_force(0.0)
         if grip < engine:
             return (
                 f"{text} the tyres can pass, φ·N = {grip:.5g} N (the engine gives {engine:.5g} N)"
@@ -965,15 +998,10 @@ def report(result: Result) -> Report:
     notes: list[Note] = []
     top = result.top
     top_rpm = scene.engine_speed(top.limit_gear, top.limit.speed) * RAD_S_TO_RPM
-    top_items = [
-        Quantity(
-            "top_speed_kmh",
-            "Top speed",
-            top.limit.speed * 3.6,
-            "km/h",
-            f"gear {top.limit_gear + 1}, {top_rpm:.0f} rpm, {top.limit.reason}",
-        )
-    ]
+    where = f"gear {top.limit_gear + 1}, {top_rpm:.0f} rpm, {top.limit.reason}"
+    if top.limit.speed == 0.0:
+        where = "the car cannot move off"
+    top_items = [Quantity("top_speed_kmh", "Top speed", top.limit.speed * 3.6, "km/h", where)]
     if result.status != "ok":
         sections.append(Quantities("Limits", top_items))
         sections.append(_gear_limits_table(scene))
@@ -988,6 +1016,13 @@ def report(result: Result) -> Report:
         Quantity("time_to_target", "Time to the target speed", run.time, "s"),
         Quantity("distance_to_target", "Distance to the target speed", run.distance, "m"),
         Quantity("gear_at_target", "Gear at the target speed", run.phases[-1].gear + 1, ""),
+        Quantity(
+            "launch_acceleration",
+            "Acceleration at launch",
+            scene.acceleration(0, 0.0, scene.slipping_at(0, 0.0)),
+            "m/s²",
+            "adhesion-limited" if scene.adhesion_limited(0, 0.0, True) else "",
+        ),
         *top_items,
     ]
     measured = case.target.measured_time
@@ -1235,7 +1270,9 @@ def _gear_limits_table(scene: Scene) -> Table:
                 f"{gear + 1}",
                 scene.ratios[gear],
                 limit.speed * 3.6,
-                round(scene.engine_speed(gear, limit.speed) * RAD_S_TO_RPM),
+                round(scene.engine_speed(gear, limit.speed) * RAD_S_TO_RPM)
+                if limit.speed > 0.0
+                else None,
                 limit.reason,
             ]
         )
