@@ -17,6 +17,7 @@ from typing import Any, TypeVar
 from pydantic import BaseModel, ValidationError
 
 from mdcalc.errors import InputError, Problem
+from mdcalc.model import FieldError
 
 M = TypeVar("M", bound=BaseModel)
 
@@ -175,6 +176,8 @@ def _problem_from_error(model: type[BaseModel], case: CaseText, err: Any) -> Pro
     kind = err["type"]
     value = err.get("input")
     ctx = err.get("ctx") or {}
+    if isinstance(ctx.get("error"), FieldError):
+        loc = (*loc, *ctx["error"].loc)
     holder, info = _walk(model, loc)
     unit = _unit(info)
     unit_text = f" {unit}" if unit else ""

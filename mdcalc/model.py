@@ -11,6 +11,15 @@ from __future__ import annotations
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 
 
+class FieldError(ValueError):
+    """A model validator's complaint about one key: ``loc`` is the key path relative
+    to the model that raises it, so the message names that key and its line."""
+
+    def __init__(self, loc: tuple[str | int, ...], message: str) -> None:
+        super().__init__(message)
+        self.loc = loc
+
+
 class CaseModel(BaseModel):
     """A section of a case file."""
 

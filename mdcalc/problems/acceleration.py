@@ -34,7 +34,7 @@ from mdcalc.core.motion import constant_force_phase
 from mdcalc.core.ode import IMPORTS as ODE_IMPORTS
 from mdcalc.core.units import STANDARD_GRAVITY, kmh_to_m_s, rpm_to_rad_s
 from mdcalc.methods import Method, NotApplicable, compare
-from mdcalc.model import CaseBase, CaseModel, exactly_one
+from mdcalc.model import CaseBase, CaseModel, FieldError, exactly_one
 from mdcalc.problems.vehicle import Drag, SurfaceName
 from mdcalc.report import (
     Column,
@@ -65,16 +65,17 @@ class TorqueCurve(CaseModel):
     @model_validator(mode="after")
     def _table(self) -> TorqueCurve:
         if len(self.speed_rpm) != len(self.torque):
-            raise ValueError(
+            raise FieldError(
+                ("torque",),
                 f"speed_rpm has {len(self.speed_rpm)} values and torque {len(self.torque)}: "
-                "they pair up"
+                "they pair up",
             )
         if any(b <= a for a, b in zip(self.speed_rpm, self.speed_rpm[1:], strict=False)):
-            raise ValueError("speed_rpm must increase strictly")
+            raise FieldError(("speed_rpm",), f"got {self.speed_rpm}; must increase strictly")
         if self.speed_rpm[0] <= 0:
-            raise ValueError("speed_rpm must be > 0 rpm")
+            raise FieldError(("speed_rpm",), f"got {self.speed_rpm[0]:g}; must be > 0 rpm")
         if any(t <= 0 for t in self.torque):
-            raise ValueError("torque must be > 0 N·m at every speed of the table")
+            raise FieldError(("torque",), "must be > 0 N·m at every speed of the table")
         return self
 
 
@@ -135,10 +136,13 @@ class Transmission(CaseModel):
 
     @model_validator(mode="after")
     def _ratios(self) -> Transmission:
-        if any(u <= 0 for u in self.gear_ratios):
-            raise ValueError("gear_ratios must all be > 0")
-        if any(b >= a for a, b in zip(self.gear_ratios, self.gear_ratios[1:], strict=False)):
-            raise ValueError("gear_ratios must decrease from first gear up (upshifts only)")
+        ratios = self.gear_ratios
+        if any(u <= 0 for u in ratios):
+            raise FieldError(("gear_ratios",), f"got {ratios}; each must be > 0")
+        if any(b >= a for a, b in zip(ratios, ratios[1:], strict=False)):
+            raise FieldError(
+                ("gear_ratios",), f"got {ratios}; must decrease from first gear up (upshifts only)"
+            )
         return self
 
 
@@ -162,7 +166,10 @@ class Vehicle(CaseModel):
         if self.rotating_mass_factors is not None and any(
             d < 1 or d > 10 for d in self.rotating_mass_factors
         ):
-            raise ValueError("rotating_mass_factors must each be in [1, 10]")
+            raise FieldError(
+                ("rotating_mass_factors",),
+                f"got {self.rotating_mass_factors}; each must be in [1, 10]",
+            )
         return self
 
 
@@ -196,11 +203,14 @@ class Adhesion(CaseModel):
     def _adhesion(self) -> Adhesion:
         exactly_one("adhesion", surface=self.surface, coefficient=self.coefficient)
         if (self.cg_height is None) != (self.wheelbase is None):
-            raise ValueError("cg_height and wheelbase go together (load transfer h/L)")
+            missing = "wheelbase" if self.wheelbase is None else "cg_height"
+            raise FieldError((missing,), "cg_height and wheelbase go together (load transfer h/L)")
         if self.drive == "rear" and self.cg_height is not None and self.wheelbase is not None:
             if self.phi * self.cg_height / self.wheelbase >= 1:
-                raise ValueError(
-                    "φ·h/L >= 1: the front wheels would lift before the rear tyres slip"
+                raise FieldError(
+                    ("cg_height",),
+                    f"φ·h/L = {self.phi * self.cg_height / self.wheelbase:.3g} >= 1: the front "
+                    "wheels would lift before the rear tyres slip",
                 )
         return self
 
@@ -265,29 +275,35 @@ class Case(CaseBase):
         factors = self.vehicle.rotating_mass_factors
         gears = len(self.transmission.gear_ratios)
         if factors is not None and len(factors) != gears:
-            raise ValueError(
-                f"vehicle.rotating_mass_factors has {len(factors)} values for {gears} gears"
+            raise FieldError(
+                ("vehicle", "rotating_mass_factors"),
+                f"got {len(factors)} values for {gears} gears; give one per gear",
             )
         curve = engine_curve(self.engine)
         launch, shift, limit = engine_speeds(self, curve)
         if not launch <= shift <= limit:
-            raise ValueError(
+            raise FieldError(
+                ("transmission",),
                 f"engine speeds must satisfy launch <= shift <= rev limit; got "
                 f"{launch * RAD_S_TO_RPM:.0f} <= {shift * RAD_S_TO_RPM:.0f} <= "
-                f"{limit * RAD_S_TO_RPM:.0f} rpm"
+                f"{limit * RAD_S_TO_RPM:.0f} rpm",
             )
         if not curve.low <= launch:
-            raise ValueError(
+            raise FieldError(
+                ("transmission", "launch_speed_rpm"),
                 f"launch speed {launch * RAD_S_TO_RPM:.0f} rpm is below the torque table "
-                f"({curve.low * RAD_S_TO_RPM:.0f} rpm)"
+                f"({curve.low * RAD_S_TO_RPM:.0f} rpm)",
             )
         if limit > curve.high or (not curve.is_table and limit >= curve.high):
-            raise ValueError(
+            raise FieldError(
+                ("engine", "max_speed_rpm"),
                 f"rev limit {limit * RAD_S_TO_RPM:.0f} rpm is beyond the torque curve, which ends "
-                f"at {curve.high * RAD_S_TO_RPM:.0f} rpm"
+                f"at {curve.high * RAD_S_TO_RPM:.0f} rpm",
             )
         if any(curve.torque(launch + (limit - launch) * k / 64) <= 0 for k in range(65)):
-            raise ValueError("the engine torque curve is not positive between launch and rev limit")
+            raise FieldError(
+                ("engine",), "the torque curve is not positive between launch and rev limit"
+            )
         return self
 
 

@@ -1,0 +1,218 @@
+"""``mdcalc acceleration`` from the command line: bad input, no-answer scenes,
+extremes, JSON content. The physics is pinned in test_physics_acceleration.py and
+in the [expect] tables of cases/acceleration/."""
+
+from __future__ import annotations
+
+import json
+import math
+import tomllib
+from pathlib import Path
+from typing import Any
+
+import pytest
+from tomli_w import dumps as toml_dumps
+
+from tests.conftest import CASES
+
+VAZ = CASES / "acceleration" / "vaz2106.toml"
+
+
+def vaz(**changes: dict[str, Any]) -> dict[str, Any]:
+    """The VAZ-2106 case without its [expect] table, sections updated by ``changes``."""
+    data = tomllib.loads(VAZ.read_text(encoding="utf-8"))
+    data.pop("expect")
+    for section, values in changes.items():
+        if values is None:
+            data.pop(section, None)
+        else:
+            data.setdefault(section, {}).update(values)
+    return data
+
+
+def finite_everywhere(document: Any) -> bool:
+    if isinstance(document, float):
+        return math.isfinite(document)
+    if isinstance(document, dict):
+        return all(finite_everywhere(v) for v in document.values())
+    if isinstance(document, list):
+        return all(finite_everywhere(v) for v in document)
+    return True
+
+
+# ---------------------------------------------------------------------- bad input
+
+
+@pytest.mark.parametrize(
+    ("changes", "where", "says"),
+    [
+        (
+            {"transmission": {"gear_ratios": [3.2, 3.5, 1.0]}},
+            "transmission.gear_ratios",
+            "decrease",
+        ),
+        (
+            {"vehicle": {"rotating_mass_factors": [1.4, 1.2]}},
+            "vehicle.rotating_mass_factors",
+            "4 gears",
+        ),
+        ({"engine": {"leiderman": [1.0, 1.0]}}, "engine.leiderman", "at least 3"),
+        ({"engine": {"max_powr": 57000.0}}, "engine.max_powr", "did you mean 'max_power'"),
+        ({"transmission": {"efficiency": 1.2}}, "transmission.efficiency", "<= 1"),
+        ({"transmission": {"shift_speed_rpm": 2000.0}}, "transmission", "launch <= shift"),
+        ({"engine": {"max_speed_rpm": 12000.0}}, "engine.max_speed_rpm", "beyond the torque curve"),
+        ({"adhesion": {"cg_height": 4.0}}, "adhesion.cg_height", "front wheels would lift"),
+        ({"adhesion": {"wheelbase": None}}, "adhesion.wheelbase", "go together"),
+        ({"target": {"speed": 20.0}}, "target", "exactly one of speed or speed_kmh"),
+        ({"road": {"resistance": -0.1}}, "road.resistance", ">= 0"),
+        ({"vehicle": {"mass": 0.0}}, "vehicle.mass", "> 0 kg"),
+    ],
+)
+def test_bad_input_names_the_key(cli, write_case, changes, where, says) -> None:
+    data = vaz(**{k: v for k, v in changes.items()})
+    if "wheelbase" in changes.get("adhesion", {}):
+        del data["adhesion"]["wheelbase"]
+    path = write_case(toml_dumps(data))
+    result = cli("acceleration", path)
+    assert result.exit_code == 2, result.output
+    assert f"error: {where}: " in result.stderr
+    assert says in result.stderr
+    assert "Traceback" not in result.stderr
+    first = result.stderr.splitlines()[0]
+    assert first.startswith(f"{path}:"), first
+
+
+def test_torque_table_must_pair_up(cli, write_case) -> None:
+    data = vaz(engine=None)
+    data["engine"] = {
+        "torque_curve": {"speed_rpm": [1000.0, 3000.0, 5000.0], "torque": [90.0, 110.0]}
+    }
+    result = cli("acceleration", write_case(toml_dumps(data)))
+    assert result.exit_code == 2
+    assert "engine.torque_curve.torque: " in result.stderr
+
+
+def test_engine_needs_a_curve(cli, write_case) -> None:
+    data = vaz(engine=None)
+    data["engine"] = {"max_power": 57000.0}
+    result = cli("acceleration", write_case(toml_dumps(data)))
+    assert result.exit_code == 2
+    assert "max_power_speed_rpm" in result.stderr
+
+
+# --------------------------------------------------------------------- no answer
+
+
+def test_truck_cannot_reach_100(cli) -> None:
+    result = cli("acceleration", CASES / "acceleration" / "truck.toml")
+    assert result.exit_code == 3
+    assert "not reachable: top speed is 87.26 km/h" in result.stderr
+    assert "traction equals resistance" in result.stderr
+
+
+def test_steep_hill_cannot_move_off(cli) -> None:
+    result = cli("acceleration", CASES / "acceleration" / "steep_hill.toml")
+    assert result.exit_code == 3
+    assert "cannot move off" in result.stderr
+
+
+def test_ice_limits_the_tyres_not_the_engine(cli, write_case) -> None:
+    result = cli("acceleration", write_case(toml_dumps(vaz(adhesion={"surface": "ice"}))))
+    assert result.exit_code == 3
+    assert "the tyres can pass" in result.stderr
+
+
+def test_target_on_the_asymptote_is_no_answer(cli, write_case) -> None:
+    # Truck top speed 87.2596197747 km/h (hand quadratic, truck.toml); 2e-9 below it.
+    data = tomllib.loads((CASES / "acceleration" / "truck.toml").read_text(encoding="utf-8"))
+    data.pop("expect")
+    data["target"]["speed_kmh"] = 87.2596196
+    result = cli("acceleration", write_case(toml_dumps(data)))
+    assert result.exit_code == 3
+    assert "only approaches" in result.stderr
+
+
+def test_no_answer_json_has_status_and_top_speed(cli) -> None:
+    result = cli("acceleration", CASES / "acceleration" / "truck.toml", "--json")
+    assert result.exit_code == 3
+    document = json.loads(result.stdout)
+    assert document["status"] == "no-answer"
+    assert "87.26 km/h" in document["message"]
+    assert document["results"]["top_speed_kmh"]["unit"] == "km/h"
+    assert [s["key"] for s in document["sections"] if s["kind"] == "table"] == ["gear_limits"]
+
+
+# ---------------------------------------------------------------------- extremes
+
+
+@pytest.mark.parametrize(
+    "changes",
+    [
+        {"target": {"speed_kmh": 0.5}},  # inside the launch slip
+        {"target": {"speed_kmh": 140.0}},  # in top gear, just below the rev-limit speed
+        {"transmission": {"shift_time": 0.0}},
+        {"transmission": {"shift_time": 10.0}},
+        {"road": {"resistance": 0.0}, "drag": None, "adhesion": None},
+        {"vehicle": {"mass": 50.0}},  # a featherweight: adhesion-limited everywhere
+        {"vehicle": {"mass": 4000.0}},
+        {"adhesion": {"drive": "all", "driven_axle_load": 1.0}},
+        {"adhesion": {"drive": "front", "driven_axle_load": 0.6}},
+        {"drag": {"drag_coefficient": 3.0, "frontal_area": 10.0}},
+        {"transmission": {"launch_speed_rpm": 5400.0}},
+        {"transmission": {"gear_ratios": [3.0]}},
+    ],
+)
+def test_extremes_stay_finite(cli, write_case, changes) -> None:
+    result = cli("acceleration", write_case(toml_dumps(vaz(**changes))), "--json")
+    assert result.exit_code in (0, 3), result.output + result.stderr
+    document = json.loads(result.stdout)
+    assert finite_everywhere(document)
+    if result.exit_code == 0:
+        assert document["results"]["time_to_target"]["value"] > 0
+        assert "Traceback" not in result.stderr
+    else:
+        assert document["message"]
+
+
+def test_json_carries_the_tables_and_methods(cli) -> None:
+    result = cli("acceleration", VAZ, "--json")
+    assert result.exit_code == 0
+    document = json.loads(result.stdout)
+    tables = {s["key"]: s for s in document["sections"] if s["kind"] == "table"}
+    assert set(tables) == {"phases", "speed_time"}
+    speed_time = tables["speed_time"]
+    assert [c["label"] for c in speed_time["columns"]][:2] == ["time", "speed"]
+    last = speed_time["rows"][-1]
+    assert last[0] == pytest.approx(document["results"]["time_to_target"]["value"], rel=1e-12)
+    assert last[1] == pytest.approx(100.0, rel=1e-9)
+    methods = next(s for s in document["sections"] if s["kind"] == "methods")
+    names = [row["method"] for row in methods["rows"]]
+    assert names == [
+        "lecture (7.42)",
+        "piecewise-constant acceleration",
+        "ODE RK45, rtol 1e-3",
+        "ODE RK45, rtol 1e-6",
+        "ODE DOP853, rtol 1e-11",
+    ]
+    assert [row["reference"] for row in methods["rows"]] == [False] * 4 + [True]
+    assert all(row["seconds"] > 0 for row in methods["rows"])
+    # Error falls with the tolerance: the run-time/accuracy trade the table shows.
+    errors = [row["rel_errors"]["time_to_target"] for row in methods["rows"][2:4]]
+    assert errors[1] < errors[0] < 1e-3
+
+
+def test_lecture_section_only_with_lecture_table(cli) -> None:
+    with_lecture = json.loads(
+        cli("acceleration", CASES / "acceleration" / "lecture.toml", "--json").stdout
+    )
+    without = json.loads(cli("acceleration", VAZ, "--json").stdout)
+    assert "lecture_total_time" in with_lecture["results"]
+    assert "lecture_total_time" not in without["results"]
+    assert any("conventions" in n["text"] for n in with_lecture["notes"])
+
+
+def test_template_runs(cli, tmp_path: Path) -> None:
+    path = tmp_path / "new.toml"
+    assert cli("new", "acceleration", "-o", path).exit_code == 0
+    result = cli("acceleration", path)
+    assert result.exit_code == 0, result.stderr
