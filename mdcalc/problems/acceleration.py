@@ -32,10 +32,10 @@ from pydantic import Field, model_validator
 
 from mdcalc.core.motion import constant_force_phase
 from mdcalc.core.ode import IMPORTS as ODE_IMPORTS
-from mdcalc.core.units import STANDARD_GRAVITY, kmh_to_m_s, rpm_to_rad_s
+from mdcalc.core.units import STANDARD_GRAVITY, rpm_to_rad_s
 from mdcalc.methods import Method, NotApplicable, compare
 from mdcalc.model import CaseBase, CaseModel, FieldError, exactly_one
-from mdcalc.problems.vehicle import Drag, SurfaceName
+from mdcalc.problems.vehicle import Drag, SurfaceName, adhesion_of, speed_of
 from mdcalc.report import (
     Column,
     MethodQuantity,
@@ -46,7 +46,6 @@ from mdcalc.report import (
     Report,
     Table,
 )
-from mdcalc.tables import ROAD_SURFACES
 
 if TYPE_CHECKING:
     import numpy as np
@@ -216,10 +215,7 @@ class Adhesion(CaseModel):
 
     @property
     def phi(self) -> float:
-        if self.coefficient is not None:
-            return self.coefficient
-        assert self.surface is not None
-        return ROAD_SURFACES[self.surface].low
+        return adhesion_of(self.surface, self.coefficient)
 
 
 class Target(CaseModel):
@@ -239,10 +235,7 @@ class Target(CaseModel):
 
     @property
     def value(self) -> float:
-        if self.speed is not None:
-            return self.speed
-        assert self.speed_kmh is not None
-        return kmh_to_m_s(self.speed_kmh)
+        return speed_of(self.speed, self.speed_kmh)
 
 
 class Lecture(CaseModel):

@@ -21,10 +21,10 @@ from pydantic import Field, model_validator
 
 from mdcalc.core.motion import Phase, constant_force_phase, ramp_phase
 from mdcalc.core.ode import IMPORTS as ODE_IMPORTS
-from mdcalc.core.units import STANDARD_GRAVITY, kmh_to_m_s
+from mdcalc.core.units import STANDARD_GRAVITY
 from mdcalc.methods import Method, compare
 from mdcalc.model import CaseBase, CaseModel, exactly_one
-from mdcalc.problems.vehicle import Drag, SurfaceName
+from mdcalc.problems.vehicle import Drag, SurfaceName, adhesion_of, speed_of
 from mdcalc.report import (
     Column,
     MethodQuantity,
@@ -58,10 +58,7 @@ class Vehicle(CaseModel):
 
     @property
     def speed(self) -> float:
-        if self.initial_speed is not None:
-            return self.initial_speed
-        assert self.initial_speed_kmh is not None
-        return kmh_to_m_s(self.initial_speed_kmh)
+        return speed_of(self.initial_speed, self.initial_speed_kmh)
 
 
 class Brakes(CaseModel):
@@ -124,10 +121,7 @@ class Road(CaseModel):
 
     @property
     def phi(self) -> float:
-        if self.adhesion is not None:
-            return self.adhesion
-        assert self.surface is not None
-        return ROAD_SURFACES[self.surface].low
+        return adhesion_of(self.surface, self.adhesion)
 
 
 class Driver(CaseModel):

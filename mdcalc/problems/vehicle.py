@@ -6,7 +6,9 @@ from typing import Literal
 
 from pydantic import Field
 
+from mdcalc.core.units import kmh_to_m_s
 from mdcalc.model import CaseModel
+from mdcalc.tables import ROAD_SURFACES
 
 #: Road surfaces of :data:`mdcalc.tables.ROAD_SURFACES`.
 SurfaceName = Literal[
@@ -23,3 +25,19 @@ class Drag(CaseModel):
     def factor(self) -> float:
         """k in F = k·v² [kg/m]."""
         return 0.5 * self.air_density * self.drag_coefficient * self.frontal_area
+
+
+def adhesion_of(surface: str | None, coefficient: float | None) -> float:
+    """φ given directly, or the low (conservative) end of a named surface's range."""
+    if coefficient is not None:
+        return coefficient
+    assert surface is not None, "validation ensures one of the two"
+    return ROAD_SURFACES[surface].low
+
+
+def speed_of(speed: float | None, speed_kmh: float | None) -> float:
+    """A speed given in m/s or in km/h, in m/s."""
+    if speed is not None:
+        return speed
+    assert speed_kmh is not None, "validation ensures one of the two"
+    return kmh_to_m_s(speed_kmh)
