@@ -1186,8 +1186,9 @@ def _lecture_conventions(result: Result) -> str:
     return (
         "the lecture method keeps the lecture's conventions so that it reproduces its numbers, "
         f"not physics: ψ = {scene.psi:g} is subtracted as an acceleration in m/s² (physically "
-        f"ψ·g = {scene.psi * scene.g:.4g} m/s²); the weight in N is used as the mass in kg; "
-        f"A/m = {a_per_ratio:.4g} m/s² per unit ratio is taken as given (the curve's peak "
+        f"ψ·g = {scene.psi * scene.g:.4g} m/s²); A/m = {a_per_ratio:.4g} m/s² per unit ratio "
+        "is taken as given (the lecture's 1.1 rests on a garbled M_max = 206 N·m and on its "
+        "weight of 15 000 N taken as a mass of 1500 kg; the curve's peak "
         f"{peak_torque:.4g} N·m with η = {scene.efficiency:g} gives {physical:.3g}); the rotating "
         "masses, drag, adhesion and the speed lost in shifts are left out; each gear ends at "
         f"ω_D = {omega_d:.4g} rad/s = {omega_d * RAD_S_TO_RPM:.0f} rpm"
