@@ -106,6 +106,10 @@ class Engine(CaseModel):
 
     @model_validator(mode="after")
     def _curve(self) -> Engine:
+        if self.max_torque is not None and self.max_torque_speed_rpm is None:
+            raise FieldError(
+                ("max_torque_speed_rpm",), "required with max_torque (the point checked)"
+            )
         if self.torque_curve is None and (
             self.max_power is None or self.max_power_speed_rpm is None
         ):
@@ -163,11 +167,12 @@ class Vehicle(CaseModel):
     @model_validator(mode="after")
     def _deltas(self) -> Vehicle:
         if self.rotating_mass_factors is not None and any(
-            d < 1 or d > 10 for d in self.rotating_mass_factors
+            d < self.rotating_mass_base or d > 10 for d in self.rotating_mass_factors
         ):
             raise FieldError(
                 ("rotating_mass_factors",),
-                f"got {self.rotating_mass_factors}; each must be in [1, 10]",
+                f"got {self.rotating_mass_factors}; each must be in "
+                f"[rotating_mass_base = {self.rotating_mass_base:g}, 10]: the engine adds inertia",
             )
         return self
 
@@ -273,6 +278,20 @@ class Case(CaseBase):
                 f"got {len(factors)} values for {gears} gears; give one per gear",
             )
         curve = engine_curve(self.engine)
+        limit = engine_speeds(self, curve)[2]
+        if limit <= curve.low:
+            raise FieldError(
+                ("engine", "max_speed_rpm"),
+                f"rev limit {limit * RAD_S_TO_RPM:.0f} rpm is not above the torque table's "
+                f"first speed ({curve.low * RAD_S_TO_RPM:.0f} rpm)",
+            )
+        if default_launch_at_an_end(self, curve, limit):
+            omega = curve.peak(limit)[0]
+            raise FieldError(
+                ("transmission", "launch_speed_rpm"),
+                f"required here: the torque curve peaks at the end of its range "
+                f"({omega * RAD_S_TO_RPM:.0f} rpm), which is no launch speed",
+            )
         launch, shift, limit = engine_speeds(self, curve)
         if not launch <= shift <= limit:
             raise FieldError(
@@ -351,16 +370,28 @@ class EngineCurve:
         x = omega / self.rated_speed
         return self.rated_torque * (a + b * x - c * x * x)  # (7.37) read as Leiderman's
 
+    def _candidates(self, limit: float) -> list[float]:
+        """Table speeds up to ``limit``, ``limit`` itself and a fine grid: where a
+        piecewise-linear torque, or the piecewise-quadratic power M·ω, peaks."""
+        inside = [w for w in self.speeds if w <= limit]
+        grid = [self.low + (limit - self.low) * k / 512 for k in range(513)]
+        return sorted({*inside, *grid})
+
     def peak(self, limit: float) -> tuple[float, float]:
         """(ω, M) at the maximum torque on [low, limit]."""
         if self.is_table:
-            pairs = [(w, m) for w, m in zip(self.speeds, self.torques, strict=True) if w <= limit]
-            best = max(pairs, key=lambda p: p[1])
-            return best
+            omega = max(self._candidates(limit), key=self.torque)
+            return omega, self.torque(omega)
         a, b, c = self.coefficients
         x = b / (2.0 * c) if c > 0 else limit / self.rated_speed
         omega = min(max(x * self.rated_speed, self.low), limit)
         return omega, self.torque(omega)
+
+    def max_power_speed(self, limit: float) -> float:
+        """ω of the maximum power M·ω on [low, limit]: n_E of Leiderman's curve."""
+        if not self.is_table:
+            return min(self.rated_speed, limit)
+        return max(self._candidates(limit), key=lambda w: w * self.torque(w))
 
 
 def engine_curve(engine: Engine) -> EngineCurve:
@@ -384,7 +415,10 @@ def engine_speeds(case: Case, curve: EngineCurve) -> tuple[float, float, float]:
         limit = curve.high
     else:
         limit = curve.rated_speed
-    shift = rpm_to_rad_s(gearbox.shift_speed_rpm) if gearbox.shift_speed_rpm else limit
+    if gearbox.shift_speed_rpm is not None:
+        shift = rpm_to_rad_s(gearbox.shift_speed_rpm)
+    else:  # n_E, the speed of maximum power
+        shift = curve.max_power_speed(limit)
     if gearbox.launch_speed_rpm is not None:
         launch = rpm_to_rad_s(gearbox.launch_speed_rpm)
     elif engine.max_torque_speed_rpm is not None:
@@ -392,6 +426,16 @@ def engine_speeds(case: Case, curve: EngineCurve) -> tuple[float, float, float]:
     else:
         launch = curve.peak(limit)[0]
     return launch, shift, limit
+
+
+def default_launch_at_an_end(case: Case, curve: EngineCurve, limit: float) -> bool:
+    """Whether the default launch speed (peak torque) falls at an end of the curve's
+    range: a flat, rising or falling curve gives no sensible launch speed by itself."""
+    if case.transmission.launch_speed_rpm or case.engine.max_torque_speed_rpm:
+        return False
+    omega = curve.peak(limit)[0]
+    span = limit - curve.low
+    return omega <= curve.low + 1e-9 * span or omega >= limit - 1e-9 * span
 
 
 # ------------------------------------------------------------------------ the scene
@@ -461,8 +505,13 @@ class Scene:
     def adhesion_acceleration(self, v: float) -> float:
         """(φ·N - R)/(δ_0·m): the most the tyres allow. When they limit the car, the
         engine's surplus turns the engine and driveline, so their inertia (δ_e·U_i²)
-        is not charged to the tyre force; δ_0 keeps the wheels'."""
-        return (self.adhesion_force(v) - self.resistance(v)) / (self.delta_free * self.mass)
+        is not charged to the tyre force; δ_0 keeps the wheels'. With rear drive, no
+        more than the acceleration at which the front wheels lift:
+        m·a·h/L = m·g - N_0."""
+        a = (self.adhesion_force(v) - self.resistance(v)) / (self.delta_free * self.mass)
+        if self.transfer > 0.0:
+            a = min(a, (self.mass * self.g - self.axle_load) / (self.mass * self.transfer))
+        return a
 
     def adhesion_limited(self, gear: int, v: float, slipping: bool) -> bool:
         if self.phi is None:
@@ -474,6 +523,10 @@ class Scene:
         if self.phi is None:
             return a
         return min(a, self.adhesion_acceleration(v))
+
+    def engine_speed_at(self, gear: int, v: float) -> float:
+        """The engine's actual speed: held at the launch speed while the clutch slips."""
+        return max(self.engine_speed(gear, v), self.launch)
 
     def slipping_at(self, gear: int, v: float) -> bool:
         """The clutch slips while the road speed gives less than the launch engine speed."""
@@ -577,6 +630,32 @@ def gear_limit(scene: Scene, gear: int, v_in: float, samples: int = 256) -> Gear
     return GearLimit(v_rev, "rev limit")
 
 
+def crossover(
+    scene: Scene, gear: int, v_in: float, v_top: float, samples: int = 256
+) -> float | None:
+    """The first speed in [v_in, v_top) where the next gear accelerates the car
+    harder than ``gear`` does, or None."""
+    nxt = gear + 1
+
+    def better(v: float) -> bool:
+        here = scene.acceleration(gear, v, scene.slipping_at(gear, v))
+        return scene.acceleration(nxt, v, scene.slipping_at(nxt, v)) > here
+
+    if better(v_in):
+        return v_in
+    previous = v_in
+    for k in range(1, samples):
+        v = v_in + (v_top - v_in) * k / samples
+        if better(v):
+            low, high = previous, v
+            for _ in range(60):
+                middle = 0.5 * (low + high)
+                low, high = (low, middle) if better(middle) else (middle, high)
+            return high
+        previous = v
+    return None
+
+
 @dataclass(frozen=True)
 class Stint:
     """Drive in ``gear`` up to ``v_end``, then shift up if ``shift_after``."""
@@ -597,9 +676,11 @@ class Plan:
 def plan(scene: Scene, target: float) -> Plan:
     """Gears, shift speeds and whether the target is reached.
 
-    Upshift at the shift engine speed while the target lies beyond it, unless the
-    next gear cannot pull at the speed it lands at or tops out below what the
-    present gear reaches; then the present gear is held to the rev limit.
+    Upshift at the shift engine speed while the target lies beyond it; where the
+    gear stops pulling before that speed, upshift early at the speed where the next
+    gear pulls harder. Do not upshift when the next gear cannot pull at the speed it
+    lands at, or tops out below what the present gear reaches: then the present gear
+    is held to the rev limit.
     """
     stints: list[Stint] = []
     v, gear = 0.0, 0
@@ -607,13 +688,22 @@ def plan(scene: Scene, target: float) -> Plan:
         limit = gear_limit(scene, gear, v)
         last = gear == scene.gears - 1
         v_shift = scene.road_speed(gear, scene.shift)
-        if not last and v_shift < target and limit.allows(v_shift):
-            v_land, _ = scene.coast(v_shift, scene.shift_time)
+        candidate: float | None = None
+        if last:
+            pass
+        elif v_shift < target and limit.allows(v_shift):
+            candidate = v_shift
+        elif not limit.allows(min(target, v_shift)):
+            # The gear stops pulling before the shift speed and the target: shift
+            # early, where the next gear pulls harder.
+            candidate = crossover(scene, gear, v, limit.speed)
+        if candidate is not None:
+            v_land, _ = scene.coast(candidate, scene.shift_time)
             nxt = gear + 1
             if scene.acceleration(nxt, v_land, scene.slipping_at(nxt, v_land)) > 0.0:
                 next_limit = gear_limit(scene, nxt, v_land)
-                if next_limit.speed >= min(target, limit.speed):
-                    stints.append(Stint(gear, v_shift, True))
+                if next_limit.speed > min(target, limit.speed) or next_limit.allows(target):
+                    stints.append(Stint(gear, candidate, True))
                     v, gear = v_land, nxt
                     continue
         if limit.allows(target):
@@ -786,6 +876,17 @@ def _piecewise_shift(
     return v1, 0.5 * (v0 + v1) * duration
 
 
+def phase_time_estimate(scene: Scene, gear: int, slipping: bool, v0: float, v1: float) -> float:
+    """∫ dv/a from v0 to v1 by the trapezoid rule on nodes crowded towards v1, where
+    a target close to a top speed makes 1/a large: a bound for the ODE runs."""
+    nodes = [v1 - (v1 - v0) * 10.0 ** (-k / 4) for k in range(49)] + [v1]
+    inverse = [1.0 / max(scene.acceleration(gear, v, slipping), 1e-300) for v in nodes]
+    return sum(
+        0.5 * (inverse[k] + inverse[k + 1]) * (nodes[k + 1] - nodes[k])
+        for k in range(len(nodes) - 1)
+    )
+
+
 def piecewise_run(scene: Scene, stints: list[Stint]) -> Run:
     return drive_through(scene, stints, _piecewise_drive, _piecewise_shift)
 
@@ -805,9 +906,7 @@ def ode_run(scene: Scene, stints: list[Stint], rtol: float, dense: bool = False)
         def rhs(time: float, y: np.ndarray) -> np.ndarray:
             return np.array([scene.acceleration(gear, y[0], slipping), y[0]])
 
-        # A bound on the phase time from the least acceleration over the phase.
-        a_min = min(scene.acceleration(gear, v0 + (v1 - v0) * k / 32, slipping) for k in range(33))
-        span = (v1 - v0) / a_min * 1.5 + 1e-3 if a_min > 0.0 else 10.0
+        span = 2.0 * phase_time_estimate(scene, gear, slipping, v0, v1) + 1e-3
         y = np.array([v0, x])
         t0 = t
         for _ in range(4):
@@ -827,7 +926,7 @@ def ode_run(scene: Scene, stints: list[Stint], rtol: float, dense: bool = False)
             t, y = segment.t, segment.y
             if segment.event is not None:
                 return t - t0, float(y[1]) - x
-            span *= 2.0
+            span *= 4.0
         raise NotApplicable(
             f"{method} did not reach {v1 * 3.6:.6g} km/h in gear {gear + 1} within "
             f"{t - t0:.3g} s: the target is within this tolerance of the top speed"
@@ -968,7 +1067,7 @@ def _no_answer(scene: Scene, the_plan: Plan) -> str:
             f"the top speed {limit.speed * 3.6:.7g} km/h (gear {gear + 1}), which the car only "
             "approaches: traction equals resistance there and the time to it is unbounded"
         )
-    engine_rpm = scene.engine_speed(gear, limit.speed) * RAD_S_TO_RPM
+    engine_rpm = scene.engine_speed_at(gear, limit.speed) * RAD_S_TO_RPM
     where = (
         f"gear {gear + 1} at the rev limit, {engine_rpm:.0f} rpm"
         if limit.reason == "rev limit"
@@ -1006,7 +1105,7 @@ def report(result: Result) -> Report:
     sections: list[Any] = [_scene_section(case, scene), _engine_section(case, scene)]
     notes: list[Note] = []
     top = result.top
-    top_rpm = scene.engine_speed(top.limit_gear, top.limit.speed) * RAD_S_TO_RPM
+    top_rpm = scene.engine_speed_at(top.limit_gear, top.limit.speed) * RAD_S_TO_RPM
     where = f"gear {top.limit_gear + 1}, {top_rpm:.0f} rpm, {top.limit.reason}"
     if top.limit.speed == 0.0:
         where = "the car cannot move off"
@@ -1183,12 +1282,17 @@ def _lecture_conventions(result: Result) -> str:
     a_per_ratio, omega_d = result.lecture_coefficients
     peak_speed, peak_torque = scene.curve.peak(scene.limit)
     physical = peak_torque * scene.final_drive * scene.efficiency / scene.radius / scene.mass
+    lecture_source = ""
+    if math.isclose(a_per_ratio, 1.1):
+        lecture_source = (
+            "the lecture's 1.1 rests on a garbled M_max = 206 N·m and on its weight of "
+            "15 000 N taken as a mass of 1500 kg; "
+        )
     return (
         "the lecture method keeps the lecture's conventions so that it reproduces its numbers, "
         f"not physics: ψ = {scene.psi:g} is subtracted as an acceleration in m/s² (physically "
         f"ψ·g = {scene.psi * scene.g:.4g} m/s²); A/m = {a_per_ratio:.4g} m/s² per unit ratio "
-        "is taken as given (the lecture's 1.1 rests on a garbled M_max = 206 N·m and on its "
-        "weight of 15 000 N taken as a mass of 1500 kg; the curve's peak "
+        f"is taken as given ({lecture_source}the curve's peak "
         f"{peak_torque:.4g} N·m with η = {scene.efficiency:g} gives {physical:.3g}); the rotating "
         "masses, drag, adhesion and the speed lost in shifts are left out; each gear ends at "
         f"ω_D = {omega_d:.4g} rad/s = {omega_d * RAD_S_TO_RPM:.0f} rpm"
@@ -1236,8 +1340,12 @@ def _nice_step(span: float) -> float:
     return 10.0 ** (exponent + 1)
 
 
+#: Most rows of the speed-time table; a finer table_step is widened to fit.
+MAX_TABLE_ROWS = 2000
+
+
 def _speed_table(scene: Scene, run: Run, step: float | None) -> Table:
-    step = step or _nice_step(run.time)
+    step = max(step or _nice_step(run.time), run.time / MAX_TABLE_ROWS)
     rows: list[list[Any]] = []
     times = [k * step for k in range(int(run.time / step) + 1)]
     if times[-1] < run.time:
@@ -1249,7 +1357,8 @@ def _speed_table(scene: Scene, run: Run, step: float | None) -> Table:
         engine: int | None = None
         if slipping is None:
             label = f"shift {gear + 1}→{gear + 2}"
-            a = -scene.resistance(v) / (scene.delta_free * scene.mass)
+            v = max(v, 0.0)  # a car stopped within the shift stays stopped
+            a = -scene.resistance(v) / (scene.delta_free * scene.mass) if v > 0.0 else 0.0
         else:
             label = f"{gear + 1}"
             a = scene.acceleration(gear, v, slipping)
@@ -1280,7 +1389,7 @@ def _gear_limits_table(scene: Scene) -> Table:
                 f"{gear + 1}",
                 scene.ratios[gear],
                 limit.speed * 3.6,
-                round(scene.engine_speed(gear, limit.speed) * RAD_S_TO_RPM)
+                round(scene.engine_speed_at(gear, limit.speed) * RAD_S_TO_RPM)
                 if limit.speed > 0.0
                 else None,
                 limit.reason,
