@@ -68,5 +68,10 @@ PROBLEMS: dict[str, ProblemSpec] = {
             "braking",
             "Car braking: time and distance, adhesion limit, road resistance, drag, reaction.",
         ),
+        ProblemSpec(
+            "mount",
+            "mount",
+            "Engine on elastic mounts: resonances, harmonic amplitudes, transmission.",
+        ),
     )
 }
