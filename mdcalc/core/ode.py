@@ -121,3 +121,49 @@ def _event(function: Event, direction: int, terminal: bool) -> Event:
     event.terminal = terminal  # type: ignore[attr-defined]
     event.direction = direction  # type: ignore[attr-defined]
     return event
+
+
+def oscillator_peak(
+    beta: float,
+    zeta: float,
+    knots: Sequence[tuple[float, float]],
+    horizon: float,
+    rtol: float,
+    stiff: bool = False,
+) -> tuple[float, float]:
+    """ODE reference for :mod:`mdcalc.core.sdof`: the largest |x| and its time for
+    x'' + 2ζβx' + β²x = β²·f(t) from rest, f linear between ``knots`` (t, f) and held
+    after the last. Integrated knot to knot (a kink or jump of the load is a segment
+    end), extrema located by events on x' = 0."""
+    import numpy as np
+
+    points = list(knots)  # in time order; a repeated time is a jump
+    if points[-1][0] < horizon:
+        points.append((horizon, points[-1][1]))
+    scale = max(abs(f) for _, f in points) or 1.0
+    atol = np.array([scale, scale * beta]) * rtol * 1e-3
+    method = pick_solver(rtol, stiff)
+    y = np.zeros(2)
+    best = (0.0, points[0][0])
+    for (t0, f0), (t1, f1) in zip(points, points[1:], strict=False):
+        t1 = min(t1, horizon)
+        if t1 <= t0:
+            continue
+        slope = (f1 - f0) / (t1 - t0)
+
+        def rhs(t: float, z: np.ndarray, t0: float = t0, f0: float = f0, s: float = slope) -> Any:
+            load = f0 + s * (t - t0)
+            return np.array([z[1], beta * beta * (load - z[0]) - 2.0 * zeta * beta * z[1]])
+
+        segment = advance(
+            rhs, t0, y, t1, rtol=rtol, atol=atol, method=method, watch=[(lambda t, z: z[1], 0)]
+        )
+        for _, t_hit, state in segment.hits:
+            if abs(state[0]) > best[0]:
+                best = (abs(float(state[0])), t_hit)
+        y = segment.y
+        if abs(y[0]) > best[0]:
+            best = (abs(float(y[0])), segment.t)
+        if t1 >= horizon:
+            break
+    return best

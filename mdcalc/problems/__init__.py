@@ -69,6 +69,11 @@ PROBLEMS: dict[str, ProblemSpec] = {
             "Car braking: time and distance, adhesion limit, road resistance, drag, reaction.",
         ),
         ProblemSpec(
+            "coupling",
+            "coupling",
+            "Elastic coupling: dynamic factor under step, harmonic, pulse, ramp, tabulated torque.",
+        ),
+        ProblemSpec(
             "mount",
             "mount",
             "Engine on elastic mounts: resonances, harmonic amplitudes, transmission.",

@@ -1,0 +1,621 @@
+"""``coupling``: dynamic factor of an elastic coupling between two inertias (seed 000
+§8.1, §8.2 first part, example 8.1; brief §5).
+
+Model (8.3): for the twist φ = φ₁ - φ₂, φ'' + p·φ' + q·φ = M₁/J₁ + M₂/J₂ with
+q = c·(1/J₁ + 1/J₂) = β², p = α·(1/J₁ + 1/J₂). A torque M passed through the
+coupling enters as M/J, J = J₁J₂/(J₁ + J₂), so its static twist is M/c. Damping from
+the absorption coefficient ψ (p = ψ/τ, (8.7) and (8.14) with the lecture's
+τ = 2π/β), the logarithmic decrement δ (p = 2δ/τ) or α itself. In the terms of
+:mod:`mdcalc.core.sdof`, ζ = p/(2β).
+
+* Suddenly applied torque (8.15)-(8.16): dynamic factor 1 + exp(-π·ζ/√(1 - ζ²)),
+  envelope 1 + e^(-p·t/2), exactly 2 undamped, 1 over-damped.
+* Harmonic torques on both halves (8.19)-(8.32): the combined amplitude (8.21), the
+  steady twist (8.27), the response curve over λ = ω/β, the resonance peak at
+  λ = √(1 - γ²/2) of height M/(β²·γ·√(1 - γ²/4)), γ = p/β (the printed (8.32) has
+  √(1 - γ²/2)).
+* Rectangular pulse, ramp and tabulated torque through the Duhamel integral, exact
+  for piecewise-linear loads, checked against ODE runs in the Methods table.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Any, Literal
+
+from pydantic import Field, model_validator
+
+from mdcalc.core import sdof
+from mdcalc.core.ode import IMPORTS as ODE_IMPORTS
+from mdcalc.core.units import rpm_to_rad_s
+from mdcalc.methods import Method, compare
+from mdcalc.model import CaseBase, CaseModel, FieldError, exactly_one
+from mdcalc.report import (
+    Column,
+    MethodQuantity,
+    MethodsTable,
+    Note,
+    Quantities,
+    Quantity,
+    Report,
+    Table,
+)
+
+DEG = math.pi / 180.0
+
+# ------------------------------------------------------------------------ the case
+
+
+class Coupling(CaseModel):
+    driving_inertia: float = Field(gt=0, description="J₁, driving half with the motor [kg·m^2]")
+    driven_inertia: float = Field(gt=0, description="J₂, driven half with the machine [kg·m^2]")
+    stiffness: float | None = Field(default=None, gt=0, description="c [N·m/rad]")
+    stiffness_nm_per_deg: float | None = Field(
+        default=None, gt=0, description="c, as catalogues give it [N·m/deg]"
+    )
+    absorption: float | None = Field(
+        default=None, ge=0, le=20, description="ψ = ΔU/U, absorption coefficient (8.13) [-]"
+    )
+    log_decrement: float | None = Field(
+        default=None, ge=0, le=10, description="δ = ln(A₁/A₂), logarithmic decrement (8.7) [-]"
+    )
+    damping: float | None = Field(
+        default=None, ge=0, description="α, viscous damping of the coupling [N·m·s/rad]"
+    )
+
+    @model_validator(mode="after")
+    def _one(self) -> Coupling:
+        exactly_one(
+            "coupling", stiffness=self.stiffness, stiffness_nm_per_deg=self.stiffness_nm_per_deg
+        )
+        given = [
+            k for k in ("absorption", "log_decrement", "damping") if getattr(self, k) is not None
+        ]
+        if len(given) > 1:
+            raise FieldError(
+                (given[1],),
+                f"give one of absorption, log_decrement, damping (got {', '.join(given)})",
+            )
+        return self
+
+
+class Step(CaseModel):
+    torque: float | None = Field(
+        default=None, gt=0, description="M₀, the suddenly applied torque (optional) [N·m]"
+    )
+
+
+class Harmonic(CaseModel):
+    driving_torque: float = Field(ge=0, description="M₁, amplitude on the driving half [N·m]")
+    driving_phase_deg: float = Field(default=0.0, description="α, its phase [deg]")
+    driven_torque: float = Field(
+        default=0.0, ge=0, description="M₂, amplitude on the driven half [N·m]"
+    )
+    driven_phase_deg: float = Field(default=0.0, description="γ, its phase [deg]")
+    speed: float | None = Field(default=None, gt=0, description="ω [rad/s]")
+    speed_rpm: float | None = Field(default=None, gt=0, description="ω [rpm]")
+
+    @model_validator(mode="after")
+    def _one(self) -> Harmonic:
+        exactly_one("harmonic", speed=self.speed, speed_rpm=self.speed_rpm)
+        if self.driving_torque == 0.0 and self.driven_torque == 0.0:
+            raise FieldError(
+                ("driving_torque",), "both torque amplitudes are 0: nothing excites the coupling"
+            )
+        return self
+
+    @property
+    def omega(self) -> float:
+        return self.speed if self.speed is not None else rpm_to_rad_s(self.speed_rpm or 0.0)
+
+
+class Pulse(CaseModel):
+    torque: float = Field(gt=0, description="Torque of the rectangular pulse [N·m]")
+    duration: float = Field(gt=0, description="Its duration [s]")
+    horizon: float | None = Field(
+        default=None, gt=0, description="End of the run; default duration + 2τ [s]"
+    )
+
+
+class Ramp(CaseModel):
+    torque: float = Field(gt=0, description="Torque reached and then held [N·m]")
+    rise_time: float = Field(gt=0, description="Time to reach it, rising linearly [s]")
+    horizon: float | None = Field(
+        default=None, gt=0, description="End of the run; default rise + 2τ [s]"
+    )
+
+
+class TorqueTable(CaseModel):
+    time: list[float] = Field(
+        min_length=2, description="Times, not decreasing; a repeat is a jump [s]"
+    )
+    torque: list[float] = Field(
+        min_length=2, description="Torque, linear between points, held after [N·m]"
+    )
+    horizon: float | None = Field(
+        default=None, gt=0, description="End of the run; default last time + 2τ [s]"
+    )
+
+    @model_validator(mode="after")
+    def _table(self) -> TorqueTable:
+        if len(self.time) != len(self.torque):
+            raise FieldError(("torque",), f"{len(self.torque)} values for {len(self.time)} times")
+        if self.time[0] < 0 or any(b < a for a, b in zip(self.time, self.time[1:], strict=False)):
+            raise FieldError(("time",), f"got {self.time}; must start at >= 0 s and not decrease")
+        if all(t == 0.0 for t in self.torque):
+            raise FieldError(("torque",), "all zero: nothing loads the coupling")
+        return self
+
+
+class Case(CaseBase):
+    problem: Literal["coupling"] = Field(description="Problem name [-]")
+    coupling: Coupling
+    step: Step | None = None
+    harmonic: Harmonic | None = None
+    pulse: Pulse | None = None
+    ramp: Ramp | None = None
+    torque_table: TorqueTable | None = None
+
+
+# ------------------------------------------------------------------------ the scene
+
+
+@dataclass(frozen=True)
+class Scene:
+    j1: float
+    j2: float
+    stiffness: float  # c [N·m/rad]
+    p: float  # [1/s]
+
+    @property
+    def reduced_inertia(self) -> float:
+        return self.j1 * self.j2 / (self.j1 + self.j2)
+
+    @property
+    def beta(self) -> float:
+        return math.sqrt(self.stiffness / self.reduced_inertia)
+
+    @property
+    def period(self) -> float:
+        """τ = 2π/β (8.5), the lecture's period (undamped)."""
+        return 2.0 * math.pi / self.beta
+
+    @property
+    def zeta(self) -> float:
+        return self.p / (2.0 * self.beta)
+
+    @property
+    def alpha(self) -> float:
+        """α = p·J [N·m·s/rad]."""
+        return self.p * self.reduced_inertia
+
+
+def scene_of(case: Case) -> Scene:
+    k = case.coupling
+    stiffness = k.stiffness if k.stiffness is not None else (k.stiffness_nm_per_deg or 0.0) / DEG
+    j = k.driving_inertia * k.driven_inertia / (k.driving_inertia + k.driven_inertia)
+    tau = 2.0 * math.pi / math.sqrt(stiffness / j)
+    if k.absorption is not None:
+        p = k.absorption / tau  # (8.7), (8.14): δ = ψ/2 = p·τ/2
+    elif k.log_decrement is not None:
+        p = 2.0 * k.log_decrement / tau
+    elif k.damping is not None:
+        p = k.damping / j  # p = α·(1/J₁ + 1/J₂)
+    else:
+        p = 0.0
+    return Scene(k.driving_inertia, k.driven_inertia, stiffness, p)
+
+
+# ---------------------------------------------------------------------- transients
+
+
+@dataclass(frozen=True)
+class Transient:
+    """A torque history M(t) through the coupling, as piecewise-linear knots."""
+
+    key: str
+    title: str
+    knots: list[tuple[float, float]]
+    horizon: float
+    closed_form: float | None = None  # an exact peak factor where one exists
+    closed_form_name: str = ""
+
+    @property
+    def peak_torque(self) -> float:
+        return max(abs(m) for _, m in self.knots)
+
+
+def transients(case: Case, scene: Scene) -> list[Transient]:
+    tau = scene.period
+    out: list[Transient] = []
+    if case.pulse is not None:
+        p = case.pulse
+        knots = [(0.0, 0.0), (0.0, p.torque), (p.duration, p.torque), (p.duration, 0.0)]
+        exact = sdof.rectangular_pulse_peak(scene.beta, p.duration) if scene.p == 0.0 else None
+        out.append(
+            Transient(
+                "pulse",
+                f"Rectangular pulse, {p.torque:g} N·m for {p.duration:g} s",
+                knots,
+                p.horizon or p.duration + 2.0 * tau,
+                exact,
+                "closed form 2·sin(β·T/2) or 2 (7.96)",
+            )
+        )
+    if case.ramp is not None:
+        r = case.ramp
+        exact = None
+        if scene.p == 0.0:  # undamped ramp-and-hold: 1 + |sin(β·t_r/2)|/(β·t_r/2)
+            half = 0.5 * scene.beta * r.rise_time
+            exact = 1.0 + abs(math.sin(half)) / half
+        out.append(
+            Transient(
+                "ramp",
+                f"Ramp to {r.torque:g} N·m in {r.rise_time:g} s, then held",
+                [(0.0, 0.0), (r.rise_time, r.torque)],
+                r.horizon or r.rise_time + 2.0 * tau,
+                exact,
+                "closed form 1 + |sin(β·t_r/2)|/(β·t_r/2)",
+            )
+        )
+    if case.torque_table is not None:
+        t = case.torque_table
+        knots = list(zip(t.time, t.torque, strict=True))
+        if knots[0][0] > 0.0:
+            knots.insert(0, (0.0, 0.0))
+        out.append(
+            Transient(
+                "table",
+                "Tabulated torque",
+                knots,
+                t.horizon or t.time[-1] + 2.0 * tau,
+            )
+        )
+    return out
+
+
+def duhamel_peak(scene: Scene, transient: Transient) -> tuple[float, float]:
+    """Peak twist over static-under-peak-torque, and its time: the exact response."""
+    scale = transient.peak_torque
+    response = sdof.piecewise_linear_response(
+        [t for t, _ in transient.knots],
+        [m / scale for _, m in transient.knots],
+        scene.beta,
+        scene.zeta,
+        transient.horizon,
+    )
+    return response.peak, response.peak_time
+
+
+def ode_peak(scene: Scene, transient: Transient, rtol: float) -> float:
+    from mdcalc.core.ode import oscillator_peak
+
+    scale = transient.peak_torque
+    knots = [(t, m / scale) for t, m in transient.knots]
+    return oscillator_peak(scene.beta, scene.zeta, knots, transient.horizon, rtol)[0]
+
+
+# ------------------------------------------------------------------------- result
+
+
+@dataclass
+class Result:
+    case: Case
+    scene: Scene
+    step_methods: MethodsTable | None = None
+    harmonic_methods: MethodsTable | None = None
+    transient_methods: list[tuple[Transient, MethodsTable, tuple[float, float]]] = field(
+        default_factory=list
+    )
+    status: Literal["ok", "no-answer"] = "ok"
+    message: str | None = None
+
+
+FACTOR = [MethodQuantity("dynamic_factor", "dynamic factor", "")]
+ODE_RTOLS = ((1e-3, "RK45"), (1e-6, "RK45"), (1e-10, "DOP853"))
+
+
+def _ode_methods(run: Callable[[float], float]) -> list[Method]:
+    def method(rtol: float, name: str) -> Method:
+        return Method(
+            f"ODE {name}, rtol {rtol:.0e}".replace("e-0", "e-"),
+            lambda: {"dynamic_factor": run(rtol)},
+            imports=ODE_IMPORTS,
+        )
+
+    return [method(rtol, name) for rtol, name in ODE_RTOLS]
+
+
+def step_factor_lecture(scene: Scene) -> float:
+    """Example 8.1's reading of (8.16): peak at t = τ/2 with β₁ ≈ β and (p/2)²
+    neglected: 1 + e^(-p·τ/4)."""
+    return 1.0 + math.exp(-scene.p * scene.period / 4.0)
+
+
+def solve(case: Case) -> Result:
+    scene = scene_of(case)
+    result = Result(case, scene)
+    if case.harmonic is not None and scene.p == 0.0:
+        ratio = case.harmonic.omega / scene.beta
+        if ratio == 1.0:
+            result.status = "no-answer"
+            result.message = (
+                f"undamped resonance: ω = β = {scene.beta:.6g} rad/s and the coupling has no "
+                "damping, so the steady twist (8.27) is unbounded; give absorption, "
+                "log_decrement or damping"
+            )
+            return result
+    if case.step is not None:
+        zeta = scene.zeta
+        horizon = (sdof.step_peak_time(scene.beta, zeta) or 10.0 / scene.beta) * 1.5
+        step = Transient("step", "step", [(0.0, 1.0)], horizon)
+        result.step_methods = compare(
+            "Methods: dynamic factor of a suddenly applied torque",
+            "step",
+            FACTOR,
+            [
+                Method(
+                    "lecture: t = τ/2, β₁ ≈ β",
+                    lambda: {"dynamic_factor": step_factor_lecture(scene)},
+                    note="example 8.1",
+                ),
+                Method(
+                    "exact 1 + exp(-πζ/√(1-ζ²))",
+                    lambda: {"dynamic_factor": sdof.step_peak(zeta)},
+                    reference=True,
+                ),
+                *_ode_methods(lambda rtol: ode_peak(scene, step, rtol)),
+            ],
+        )
+    if case.harmonic is not None and scene.p > 0.0:
+        gamma = scene.p / scene.beta
+        if gamma * gamma < 2.0:
+            result.harmonic_methods = compare(
+                "Methods: resonance peak of the twist, in units of M/β²",
+                "resonance",
+                [MethodQuantity("resonance_peak", "peak·β²/M", "")],
+                [
+                    Method(
+                        "(8.32) as printed, √(1 - γ²/2)",
+                        lambda: {"resonance_peak": 1.0 / (gamma * math.sqrt(1.0 - gamma**2 / 2.0))},
+                    ),
+                    Method(
+                        "corrected (8.32), √(1 - γ²/4)",
+                        lambda: {"resonance_peak": 1.0 / (gamma * math.sqrt(1.0 - gamma**2 / 4.0))},
+                        reference=True,
+                    ),
+                    Method(
+                        "max of (8.28) on a λ grid of 10⁴ points",
+                        lambda: {"resonance_peak": _grid_peak(gamma)},
+                    ),
+                ],
+            )
+    for transient in transients(case, scene):
+        table = compare(
+            f"Methods: {transient.title}",
+            transient.key,
+            FACTOR,
+            _transient_methods(scene, transient),
+        )
+        result.transient_methods.append((transient, table, duhamel_peak(scene, transient)))
+    return result
+
+
+def _transient_methods(scene: Scene, transient: Transient) -> list[Method]:
+    methods: list[Method] = []
+    exact = transient.closed_form
+    if exact is not None:
+        methods.append(
+            Method(transient.closed_form_name, lambda: {"dynamic_factor": exact}, note="undamped")
+        )
+    methods.append(
+        Method(
+            "Duhamel, exact for piecewise-linear loads",
+            lambda: {"dynamic_factor": duhamel_peak(scene, transient)[0]},
+            reference=True,
+        )
+    )
+    return methods + _ode_methods(lambda rtol: ode_peak(scene, transient, rtol))
+
+
+def _grid_peak(gamma: float) -> float:
+    return max(
+        1.0 / math.hypot(1.0 - lam * lam, gamma * lam)
+        for lam in (3.0 * k / 10000 for k in range(10001))
+    )
+
+
+# ------------------------------------------------------------------------- report
+
+
+def report(result: Result) -> Report:
+    case, s = result.case, result.scene
+    title = case.title or "Elastic coupling"
+    sections: list[Any] = [_scene_section(case, s)]
+    notes: list[Note] = []
+    if result.status != "ok":
+        return Report("coupling", title, sections, notes, result.status, result.message)
+    if case.step is not None:
+        sections.append(_step_section(case.step, s))
+        assert result.step_methods is not None
+        sections.append(result.step_methods)
+    if case.harmonic is not None:
+        harmonic_sections, harmonic_notes = _harmonic_sections(case.harmonic, s)
+        sections += harmonic_sections
+        notes += harmonic_notes
+        if result.harmonic_methods is not None:
+            sections.append(result.harmonic_methods)
+    for transient, table, (factor, when) in result.transient_methods:
+        static = transient.peak_torque / s.stiffness
+        sections.append(
+            Quantities(
+                transient.title,
+                [
+                    Quantity(
+                        f"{transient.key}_dynamic_factor", "Dynamic factor φ_max/φ_st", factor, ""
+                    ),
+                    Quantity(f"{transient.key}_peak_time", "Time of the peak", when, "s"),
+                    Quantity(
+                        f"{transient.key}_peak_twist", "Peak twist φ_max", factor * static, "rad"
+                    ),
+                    Quantity(
+                        f"{transient.key}_peak_torque",
+                        "Peak elastic torque c·φ_max",
+                        factor * transient.peak_torque,
+                        "N·m",
+                    ),
+                ],
+            )
+        )
+        sections.append(table)
+    return Report("coupling", title, sections, notes)
+
+
+def _scene_section(case: Case, s: Scene) -> Quantities:
+    items = [
+        Quantity("driving_inertia", "J₁", s.j1, "kg·m²"),
+        Quantity("driven_inertia", "J₂", s.j2, "kg·m²"),
+        Quantity(
+            "stiffness", "Stiffness c", s.stiffness, "N·m/rad", f"{s.stiffness * DEG:.5g} N·m/deg"
+        ),
+        Quantity("reduced_inertia", "J = J₁·J₂/(J₁ + J₂)", s.reduced_inertia, "kg·m²"),
+        Quantity("natural_frequency", "β = √(c/J)", s.beta, "rad/s"),
+        Quantity("period", "τ = 2π/β (8.5)", s.period, "s"),
+    ]
+    if s.p > 0.0:
+        items += [
+            Quantity("damping_p", "p (8.3)", s.p, "1/s"),
+            Quantity("damping_alpha", "α = p·J", s.alpha, "N·m·s/rad"),
+            Quantity("log_decrement", "δ = p·τ/2 (8.7)", s.p * s.period / 2.0, ""),
+            Quantity("absorption", "ψ = 2δ (8.14)", s.p * s.period, ""),
+            Quantity("damping_ratio", "ζ = p/(2β)", s.zeta, ""),
+        ]
+    return Quantities("Coupling", items)
+
+
+def _step_section(step: Step, s: Scene) -> Quantities:
+    zeta = s.zeta
+    factor = sdof.step_peak(zeta)
+    peak_time = sdof.step_peak_time(s.beta, zeta)
+    items = [
+        Quantity(
+            "step_dynamic_factor",
+            "Dynamic factor, first peak",
+            factor,
+            "",
+            "over-damped: no overshoot" if peak_time is None else "",
+        ),
+    ]
+    if peak_time is not None:
+        items.append(Quantity("step_peak_time", "Time of the first peak π/β₁", peak_time, "s"))
+    items += [
+        Quantity(
+            "envelope_at_period",
+            "Envelope 1 + e^(-pτ/2) at t = τ",
+            sdof.step_envelope(s.period, s.beta, zeta),
+            "",
+        ),
+        Quantity(
+            "envelope_at_1_5_period",
+            "Envelope at t = 1.5·τ",
+            sdof.step_envelope(1.5 * s.period, s.beta, zeta),
+            "",
+        ),
+        Quantity("undamped_dynamic_factor", "Without damping", 2.0, ""),
+    ]
+    if step.torque is not None:
+        items += [
+            Quantity("static_twist", "Static twist M₀/c", step.torque / s.stiffness, "rad"),
+            Quantity("peak_twist", "Peak twist", factor * step.torque / s.stiffness, "rad"),
+            Quantity("peak_torque", "Peak elastic torque", factor * step.torque, "N·m"),
+        ]
+    return Quantities("Suddenly applied torque (8.15)-(8.16)", items)
+
+
+def _harmonic_sections(h: Harmonic, s: Scene) -> tuple[list[Any], list[Note]]:
+    a1, a2 = h.driving_torque / s.j1, h.driven_torque / s.j2
+    alpha, gamma_phase = h.driving_phase_deg * DEG, h.driven_phase_deg * DEG
+    combined = complex(
+        a1 * math.cos(alpha) + a2 * math.cos(gamma_phase),
+        a1 * math.sin(alpha) + a2 * math.sin(gamma_phase),
+    )
+    m = abs(combined)  # (8.21)
+    eps = math.atan2(combined.imag, combined.real)
+    omega = h.omega
+    lam = omega / s.beta
+    gamma = s.p / s.beta
+    twist = m / math.hypot(s.beta**2 - omega**2, s.p * omega)  # (8.27)
+    items = [
+        Quantity("combined_amplitude", "M (8.21), in units of M/J", m, "rad/s²"),
+        Quantity("combined_phase", "ε", math.degrees(eps), "deg"),
+        Quantity("frequency_ratio", "λ = ω/β", lam, ""),
+        Quantity("steady_twist", "Steady twist amplitude φ_max (8.27)", twist, "rad"),
+        Quantity("steady_torque", "Elastic torque amplitude c·φ_max", s.stiffness * twist, "N·m"),
+    ]
+    if s.p > 0.0:
+        items.append(
+            Quantity(
+                "steady_torque_total",
+                "Torque amplitude with damping √(c² + (αω)²)·φ_max",
+                math.hypot(s.stiffness, s.alpha * omega) * twist,
+                "N·m",
+            )
+        )
+        items.append(Quantity("gamma", "γ = p/β", gamma, ""))
+        if gamma * gamma < 2.0:
+            items += [
+                Quantity(
+                    "resonance_ratio",
+                    "Peak at λ = √(1 - γ²/2) (8.31)",
+                    math.sqrt(1 - gamma**2 / 2),
+                    "",
+                ),
+                Quantity(
+                    "resonance_twist",
+                    "Peak twist M/(β²·γ·√(1 - γ²/4))",
+                    m / (s.beta**2 * gamma * math.sqrt(1.0 - gamma**2 / 4.0)),
+                    "rad",
+                    "the printed (8.32) has √(1 - γ²/2)",
+                ),
+            ]
+    rows: list[list[Any]] = []
+    for k in range(31):
+        x = 0.1 * k
+        rows.append(
+            [x, 1.0 / math.hypot(1 - x * x, gamma * x) if (x != 1.0 or gamma > 0) else None]
+        )
+    curve = Table(
+        "Response curve (8.28): φ_max·β²/M against λ",
+        "response_curve",
+        [Column("λ"), Column("φ_max·β²/M")],
+        rows,
+    )
+    notes = []
+    if lam <= 1.5:
+        notes.append(
+            Note(
+                "warning",
+                f"λ = ω/β = {lam:.3g}: the lecture's advice is λ > 1.5 (a softer coupling, "
+                f"c < {s.reduced_inertia * (omega / 1.5) ** 2:.4g} N·m/rad), passing "
+                "the resonance quickly at start and stop",
+            )
+        )
+    return [Quantities("Harmonic torques (8.19)-(8.27)", items), curve], notes
+
+
+def template() -> dict[str, Any]:
+    return {
+        "problem": "coupling",
+        "title": "Elastic coupling, example 8.1",
+        "coupling": {
+            "driving_inertia": 10.0,
+            "driven_inertia": 4.0,
+            "stiffness_nm_per_deg": 52.5,
+            "absorption": 0.63,
+        },
+        "step": {"torque": 500.0},
+        "harmonic": {"driving_torque": 200.0, "driven_torque": 0.0, "speed": 60.0},
+        "pulse": {"torque": 500.0, "duration": 0.05},
+    }
