@@ -45,3 +45,8 @@ def test_hoist_without_rope_does_not_import_scipy():
 def test_drag_scene_does_use_scipy():
     # The guard above can fail: with drag the ODE methods run.
     assert heavy_modules("braking", str(CASES / "braking" / "drag.toml")) == "HEAVY ['scipy']"
+
+
+def test_mount_is_closed_form_and_does_not_import_scipy():
+    for case in ("example_9_1", "resonance_damped", "isolation"):
+        assert heavy_modules("mount", str(CASES / "mount" / f"{case}.toml")) == "HEAVY []"
