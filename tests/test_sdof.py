@@ -27,8 +27,16 @@ TWO_PI = 2.0 * math.pi
 # ------------------------------------------------------------------- own integrations
 
 
-def _dop853(rhs: Callable[[float, np.ndarray], list[float]], y0: Sequence[float], t0: float):
-    solver = ode(rhs).set_integrator("dop853", rtol=1e-13, atol=1e-16, nsteps=10**8)
+def _dop853(
+    rhs: Callable[[float, np.ndarray], list[float]],
+    y0: Sequence[float] | np.ndarray,
+    t0: float,
+    first_step: float,
+):
+    # an explicit first step: DOP853's own first guess fails from a state at rest (x = x' = 0)
+    solver = ode(rhs).set_integrator(
+        "dop853", rtol=1e-12, atol=1e-13, nsteps=10**8, first_step=first_step
+    )
     solver.set_initial_value(list(y0), t0)
     return solver
 
@@ -39,7 +47,7 @@ class OwnLoad:
 
     Each linear piece is integrated on its own (the load's kinks and jumps are then
     exact); ``sweep`` gives the states at sorted times, ``peak`` the largest |x| on a
-    dense grid of 200 points per natural period with every x' = 0 in between refined
+    dense grid of 100 points per natural period with every x' = 0 in between refined
     by Brent's method (re-integrating from the grid point before it).
     """
 
@@ -52,6 +60,7 @@ class OwnLoad:
         horizon: float,
     ) -> None:
         self.beta, self.zeta, self.horizon = beta, zeta, horizon
+        self.first = 1e-3 / beta
         knots = list(zip(times, loads, strict=True))
         if knots[-1][0] < horizon:
             knots.append((horizon, knots[-1][1]))
@@ -65,13 +74,15 @@ class OwnLoad:
                 continue
             slope = (f1 - f0) / (t1 - t0)
             self.pieces.append((t0, end, f0, slope, y.copy()))
-            solver = _dop853(self._rhs(t0, f0, slope), y, t0)
+            solver = _dop853(self._rhs(t0, f0, slope), y, t0, self.first)
             y = np.array(solver.integrate(end))
             assert solver.successful()
             if end >= horizon:
                 break
 
-    def _rhs(self, t0: float, f0: float, slope: float) -> Callable[[float, np.ndarray], list[float]]:
+    def _rhs(
+        self, t0: float, f0: float, slope: float
+    ) -> Callable[[float, np.ndarray], list[float]]:
         b2, c = self.beta**2, 2.0 * self.zeta * self.beta
 
         def rhs(t: float, y: np.ndarray) -> list[float]:
@@ -80,7 +91,7 @@ class OwnLoad:
         return rhs
 
     def _piece(self, t: float) -> int:
-        for i, (t0, t1, *_rest) in enumerate(self.pieces):
+        for i, (_t0, t1, *_rest) in enumerate(self.pieces):
             if t <= t1:
                 return i
         return len(self.pieces) - 1
@@ -95,7 +106,7 @@ class OwnLoad:
             i = self._piece(t)
             if i != index:
                 t0, _, f0, slope, y0 = self.pieces[i]
-                index, solver = i, _dop853(self._rhs(t0, f0, slope), y0, t0)
+                index, solver = i, _dop853(self._rhs(t0, f0, slope), y0, t0, self.first)
             assert solver is not None
             out[k] = solver.integrate(t) if t > solver.t else solver.y
             assert solver.successful()
@@ -105,10 +116,10 @@ class OwnLoad:
         t0, _, f0, slope, _ = self.pieces[self._piece(t_from)]
         if t_to == t_from:
             return y_from
-        solver = _dop853(self._rhs(t0, f0, slope), y_from, t_from)
+        solver = _dop853(self._rhs(t0, f0, slope), y_from, t_from, self.first)
         return np.array(solver.integrate(t_to))
 
-    def peak(self, per_period: int = 200) -> tuple[float, float]:
+    def peak(self, per_period: int = 100) -> tuple[float, float]:
         """(max |x|, its time) over [start, horizon]."""
         period = TWO_PI / self.beta
         best = (0.0, self.start)
@@ -122,14 +133,14 @@ class OwnLoad:
             for j in range(n):
                 va, vb = states[j, 1], states[j + 1, 1]
                 if va * vb < 0.0:
-                    ta, ya = float(grid[j]), states[j]
-                    root = brentq(
-                        lambda t, ta=ta, ya=ya: self.advance(ta, ya, t)[1],
-                        ta,
-                        float(grid[j + 1]),
-                        xtol=1e-15,
-                        rtol=1e-15,
-                    )
+                    ta, ya, tb = float(grid[j]), states[j], float(grid[j + 1])
+
+                    def velocity(t: float, ta: float = ta, ya: np.ndarray = ya) -> float:
+                        return float(self.advance(ta, ya, t)[1])
+
+                    if velocity(tb) * va >= 0.0:  # x' = 0 at the grid point itself
+                        continue
+                    root = brentq(velocity, ta, tb, xtol=1e-15, rtol=1e-15)
                     x = abs(float(self.advance(ta, ya, root)[0]))
                     if x > best[0]:
                         best = (x, root)
@@ -138,17 +149,19 @@ class OwnLoad:
 
 def own_steady_harmonic(beta: float, zeta: float, omega: float) -> tuple[float, float, float]:
     """Run x'' + 2ζβx' + β²x = β²·cos ωt from rest until the free part has decayed by
-    e^-30 (ζβt = 30), then over one more forcing period project x and the support force
-    per unit load, (β²x + 2ζβx')/β², on cos ωt and sin ωt (64 equal samples: exact for a
-    pure harmonic). Returns (amplitude of x, phase lag of x behind the load, amplitude of
-    the support force)."""
+    e^-30 (rate ζβ, or the slow root β(ζ - √(ζ²-1)) when over-damped), then over one
+    more forcing period project x and the support force per unit load, (β²x +
+    2ζβx')/β², on cos ωt and sin ωt (64 equal samples: exact for a pure harmonic).
+    Returns (amplitude of x, phase lag of x behind the load, amplitude of the support
+    force)."""
 
     def rhs(t: float, y: np.ndarray) -> list[float]:
         return [y[1], beta * beta * (math.cos(omega * t) - y[0]) - 2.0 * zeta * beta * y[1]]
 
     period = TWO_PI / omega
-    start = math.ceil(30.0 / (zeta * beta) / period) * period
-    solver = _dop853(rhs, [0.0, 0.0], 0.0)
+    rate = zeta * beta if zeta <= 1.0 else beta * (zeta - math.sqrt(zeta * zeta - 1.0))
+    start = math.ceil(30.0 / rate / period) * period
+    solver = _dop853(rhs, [0.0, 0.0], 0.0, 1e-3 / beta)
     solver.integrate(start)
     n = 64
     ts = start + period * np.arange(n) / n
@@ -189,7 +202,8 @@ def test_own_integration_agrees_with_own_closed_forms() -> None:
     assert np.max(np.abs(xs - [undamped_rect(t, beta, 0.7) for t in ts])) < 1e-11
     peak, when = pulse.peak()
     assert peak == pytest.approx(2.0 * math.sin(0.7), rel=1e-12)  # 2·sin(βT/2)
-    assert when == pytest.approx(0.35 + math.pi / 4.0, abs=1e-9)  # β(t - T/2) = π/2
+    # |x| = 2 sin(βT/2)·|sin β(t - T/2)| peaks every half period after β(t - T/2) = π/2
+    assert math.remainder(when - 0.35 - math.pi / 4.0, math.pi / 2.0) == pytest.approx(0, abs=1e-9)
     ramp = OwnLoad([0.0, 1.3], [0.0, 1.0], beta, 0.0, 9.0)
     xs = ramp.sweep(ts[:28])[:, 0]
     assert np.max(np.abs(xs - [undamped_ramp(t, beta, 1.3) for t in ts[:28]])) < 1e-11
@@ -277,7 +291,8 @@ def test_step_peak_limits() -> None:
     below = sdof.step_peak(1.0 - 1e-6)
     assert math.isfinite(below) and below == pytest.approx(1.0, abs=1e-15)
     assert math.isfinite(sdof.step_peak(math.nextafter(1.0, 0.0)))
-    assert math.isfinite(sdof.step_peak_time(2.0, math.nextafter(1.0, 0.0)))
+    near = sdof.step_peak_time(2.0, math.nextafter(1.0, 0.0))
+    assert near is not None and math.isfinite(near)
 
 
 @pytest.mark.parametrize("zeta", [1.0, 3.0])
@@ -287,7 +302,8 @@ def test_no_overshoot_when_critically_or_over_damped(zeta: float) -> None:
     own = OwnLoad([0.0], [1.0], beta, zeta, 30.0)
     xs = own.sweep(list(np.linspace(0.0, 30.0, 601)))[:, 0]
     assert np.all(np.diff(xs) >= -1e-13) and xs.max() <= 1.0 + 1e-12
-    assert xs[-1] == pytest.approx(sdof.step_peak(zeta), abs=1e-6)
+    # by t = 30 the slow root β(ζ - √(ζ²-1)) = 0.343 s⁻¹ (ζ = 3) has left e^-10.3 ≈ 3e-5
+    assert xs[-1] == pytest.approx(sdof.step_peak(zeta), abs=1e-4)
 
 
 @pytest.mark.parametrize("zeta", [0.0, 0.05, 0.3])
@@ -425,14 +441,14 @@ def check_against_own(
 def test_rectangular_pulse_against_own(zeta: float, duration: float) -> None:
     """Unit rectangular pulse (times [0, 0, T, T], loads [0, 1, 1, 0]); β = 2, so π/β =
     1.571: T = 0.4 is a short pulse, T = 2 a long one."""
-    check_against_own([0.0, 0.0, duration, duration], [0.0, 1.0, 1.0, 0.0], 2.0, zeta, 15.0)
+    check_against_own([0.0, 0.0, duration, duration], [0.0, 1.0, 1.0, 0.0], 2.0, zeta, 10.0)
 
 
 @pytest.mark.parametrize("zeta", [0.0, 0.05, 0.5, 1.0, 3.0])
 @pytest.mark.parametrize("rise", [0.3, 2.0, 4.7])
 def test_ramp_against_own(zeta: float, rise: float) -> None:
     """A ramp to 1 over t_r (times [0, t_r], loads [0, 1]), held after."""
-    check_against_own([0.0, rise], [0.0, 1.0], 2.0, zeta, 14.0)
+    check_against_own([0.0, rise], [0.0, 1.0], 2.0, zeta, 10.0)
 
 
 @pytest.mark.parametrize("zeta", [0.0, 0.1, 0.7, 1.0, 2.5])
@@ -459,7 +475,11 @@ def test_rectangular_pulse_undamped_peak(duration: float) -> None:
         expected, when = 2.0, math.pi / beta
     assert got.peak == pytest.approx(expected, rel=1e-12)
     assert sdof.rectangular_pulse_peak(beta, duration) == pytest.approx(expected, rel=1e-12)
-    assert got.peak_time == pytest.approx(when, abs=1e-8)
+    # undamped, the peak recurs: after the pulse |x| peaks every half period π/β; inside
+    # a long pulse (T ≥ π/β) 1 - cos βt = 2 first at π/β, then every 2π/β
+    assert abs(undamped_rect(got.peak_time, beta, duration)) == pytest.approx(expected, rel=1e-12)
+    recur = math.pi / beta if got.peak_time > duration else 2.0 * math.pi / beta
+    assert math.remainder(got.peak_time - when, recur) == pytest.approx(0.0, abs=1e-8)
     closed = [undamped_rect(t, beta, duration) for t in got.times]
     assert np.max(np.abs(np.array(got.displacements) - closed)) < 1e-12
 
@@ -511,7 +531,9 @@ def test_stiff_extreme_over_damped() -> None:
     beta, zeta = 1.0e4, 3.0
     got = sdof.piecewise_linear_response([0.0], [1.0], beta, zeta, 0.05)
     s1, s2 = beta * (zeta - math.sqrt(8.0)), beta * (zeta + math.sqrt(8.0))
-    closed = [1.0 - (s2 * math.exp(-s1 * t) - s1 * math.exp(-s2 * t)) / (s2 - s1) for t in got.times]
+    closed = [
+        1.0 - (s2 * math.exp(-s1 * t) - s1 * math.exp(-s2 * t)) / (s2 - s1) for t in got.times
+    ]
     assert np.all(np.isfinite(got.displacements))
     assert np.max(np.abs(np.array(got.displacements) - closed)) < 1e-12
     assert got.peak == pytest.approx(1.0, abs=1e-12)  # creeps up to 1, never beyond

@@ -182,18 +182,14 @@ def peak_of_two_harmonics(first: complex, second: complex) -> tuple[float, float
     return best
 
 
-def stiffness_for(scene: Scene, target: float) -> float | None:
+def stiffness_for(scene: Scene, target: float) -> float:
     """Mount stiffness whose first-harmonic transmissibility at ω is ``target``, with
     the same damping ratio: T² = (1 + 4ζ²u)/((1 - u)² + 4ζ²u), u = (ω/β)², a
-    quadratic in u; its root above 2 (the isolating side). None if there is none."""
+    quadratic in u. For 0 < T < 1 it is (T² - 1)·(8ζ² + 1) < 0 at u = 2, so its
+    larger root lies above 2, on the isolating side."""
     z2, t2 = scene.zeta**2, target**2
     a, b, c = t2, -2.0 * t2 + 4.0 * z2 * t2 - 4.0 * z2, t2 - 1.0
-    disc = b * b - 4.0 * a * c
-    if disc < 0.0:
-        return None
-    u = (-b + math.sqrt(disc)) / (2.0 * a)
-    if u <= 2.0:
-        return None
+    u = (-b + math.sqrt(b * b - 4.0 * a * c)) / (2.0 * a)
     return scene.engine_mass * scene.omega**2 / u
 
 
@@ -426,14 +422,6 @@ def _transmission_section(result: Result) -> Quantities:
 
 def _isolation_section(s: Scene, target: float) -> Quantities:
     stiffness = stiffness_for(s, target)
-    if stiffness is None:
-        return Quantities(
-            "Isolation target",
-            [
-                Quantity("target_transmissibility", "Target transmissibility", target, ""),
-                Quantity("isolation_reachable", "Reachable with this damping", False, ""),
-            ],
-        )
     return Quantities(
         f"Isolation target (first harmonic, ζ = {s.zeta:g} kept)",
         [
