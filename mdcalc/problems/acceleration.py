@@ -35,7 +35,6 @@ from mdcalc.core.ode import IMPORTS as ODE_IMPORTS
 from mdcalc.core.units import STANDARD_GRAVITY, rpm_to_rad_s
 from mdcalc.methods import Method, NotApplicable, compare
 from mdcalc.model import CaseBase, CaseModel, FieldError, exactly_one
-from mdcalc.problems.vehicle import Drag, SurfaceName, adhesion_of, speed_of
 from mdcalc.report import (
     Column,
     MethodQuantity,
@@ -46,6 +45,7 @@ from mdcalc.report import (
     Report,
     Table,
 )
+from mdcalc.vehicle import Drag, SurfaceName, adhesion_of, speed_of
 
 if TYPE_CHECKING:
     import numpy as np

@@ -24,7 +24,6 @@ from mdcalc.core.ode import IMPORTS as ODE_IMPORTS
 from mdcalc.core.units import STANDARD_GRAVITY
 from mdcalc.methods import Method, compare
 from mdcalc.model import CaseBase, CaseModel, exactly_one
-from mdcalc.problems.vehicle import Drag, SurfaceName, adhesion_of, speed_of
 from mdcalc.report import (
     Column,
     MethodQuantity,
@@ -36,6 +35,7 @@ from mdcalc.report import (
     Table,
 )
 from mdcalc.tables import ROAD_SURFACES
+from mdcalc.vehicle import Drag, SurfaceName, adhesion_of, speed_of
 
 # ------------------------------------------------------------------------ the case
 
