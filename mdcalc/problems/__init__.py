@@ -74,6 +74,11 @@ PROBLEMS: dict[str, ProblemSpec] = {
             "Elastic coupling: dynamic factor under step, harmonic, pulse, ramp, tabulated torque.",
         ),
         ProblemSpec(
+            "mine-hoist",
+            "mine_hoist",
+            "Mine hoist with head sheave: rope dynamic factors of a three-mass chain.",
+        ),
+        ProblemSpec(
             "mount",
             "mount",
             "Engine on elastic mounts: resonances, harmonic amplitudes, transmission.",
