@@ -50,3 +50,14 @@ def test_drag_scene_does_use_scipy():
 def test_mount_is_closed_form_and_does_not_import_scipy():
     for case in ("example_9_1", "resonance_damped", "isolation"):
         assert heavy_modules("mount", str(CASES / "mount" / f"{case}.toml")) == "HEAVY []"
+
+
+def test_mine_hoist_without_ode_rows_does_not_import_scipy(tmp_path):
+    # The modal solution is numpy only; scipy comes in with the ODE rows alone.
+    case = (CASES / "mine-hoist" / "seed_1025.toml").read_text(encoding="utf-8")
+    off = tmp_path / "no_ode.toml"
+    off.write_text(case.replace("[loads]", "[analysis]\node = false\n\n[loads]"), encoding="utf-8")
+    assert heavy_modules("mine-hoist", str(off)) == "HEAVY []"
+    assert heavy_modules("mine-hoist", str(CASES / "mine-hoist" / "seed_1025.toml")) == (
+        "HEAVY ['scipy']"
+    )
