@@ -208,7 +208,7 @@ def linear_oscillator_maxima(
     from scipy.integrate import solve_ivp
 
     events: list[Any] = [_event(function, direction, False) for function, direction in watch]
-    options: dict[str, Any] = {"jac": jacobian} if method in ("Radau", "BDF", "LSODA") else {}
+    options: dict[str, Any] = {"jac": jacobian} if method in ("Radau", "BDF") else {}
     solution = solve_ivp(
         rhs,
         (0.0, end),

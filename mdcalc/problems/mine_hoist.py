@@ -78,10 +78,10 @@ class Hoist(CaseModel):
 
 class Loads(CaseModel):
     drive_torque: float = Field(
-        ge=0, description="M₁, starting torque of the drive on the drum [N·m]"
+        ge=0, le=1e12, description="M₁, starting torque of the drive on the drum [N·m]"
     )
     load_torque: float = Field(
-        ge=0, description="W, load torque resisting the lift, at the drum axis [N·m]"
+        ge=0, le=1e12, description="W, load torque resisting the lift, at the drum axis [N·m]"
     )
 
     @model_validator(mode="after")
@@ -262,7 +262,7 @@ def seed_formula_1(chain: chains.Chain) -> float:
     (j1, j2, j3), (c12, c23) = chain.inertias, chain.stiffnesses
     half = (((j1 + j2) * c12 + (j2 + j3) * c23) / (j1 * j2) + (j2 + j3) * c23 / (j2 * j3)) / 2.0
     product = (j1 + j2 + j3) * c12 * c23 / (j1 * j2 * j3)
-    return half - math.sqrt(half * half - product)
+    return product / (half + math.sqrt(half * half - product))  # the smaller root
 
 
 # ---------------------------------------------------------------------- dynamics
@@ -439,6 +439,7 @@ class Result:
     dynamics: Dynamics | None = None
     methods: MethodsTable | None = None
     sweep: list[SweepRow] = field(default_factory=list)
+    ode_reference: str | None = None  # the Methods row that stands as the ODE reference
     status: Literal["ok", "no-answer"] = "ok"
     message: str | None = None
 
@@ -457,14 +458,15 @@ ODE_ROWS = (
 )
 
 
-def ode_reference(dyn: Dynamics) -> tuple[str, float] | None:
-    """The ODE row that stands as the scene's ODE reference: the tightest that fits
-    the budget, of Radau (implicit) on a stiff chain, else of DOP853."""
-    method = "Radau" if frequency_ratio(dyn) >= STIFF_RATIO else "DOP853"
-    for rtol in (1e-9, 1e-6, 1e-3):
-        if ode_evaluations(dyn, method, rtol) <= EVALUATION_BUDGET:
-            return method, rtol
-    return None
+def _mark_ode_reference(table: MethodsTable, dyn: Dynamics) -> str | None:
+    """Mark the ODE reference among the rows that produced a value: the tightest
+    Radau row on a stiff chain, else the tightest DOP853 row."""
+    solver = "Radau" if frequency_ratio(dyn) >= STIFF_RATIO else "DOP853"
+    ran = [row for row in table.rows if row.method.startswith(f"ODE {solver}") and row.values]
+    if not ran:
+        return None
+    ran[-1].note = "ODE reference for this scene"
+    return ran[-1].method
 
 
 def frequency_ratio(dyn: Dynamics) -> float:
@@ -497,13 +499,11 @@ def solve(case: Case) -> Result:
         ),
     ]
     if case.analysis.ode:
-        picked = ode_reference(dyn)
         for method, kind, rtol in ODE_ROWS:
             methods.append(
                 Method(
                     f"ODE {method} ({kind}), rtol {rtol:.0e}".replace("e-0", "e-"),
                     partial(ode_first_swing, scene, dyn, method, rtol),
-                    note="ODE reference for this scene" if picked == (method, rtol) else "",
                     imports=ODE_IMPORTS,
                 )
             )
@@ -513,6 +513,7 @@ def solve(case: Case) -> Result:
         FACTORS,
         methods,
     )
+    result.ode_reference = _mark_ode_reference(result.methods, dyn)
     if case.sweep is not None:
         for height in case.sweep.heights:
             try:
@@ -552,23 +553,29 @@ def report(result: Result) -> Report:
     if ratio >= STIFF_RATIO:
         text = f"stiff chain: β₂/β₁ = {ratio:.4g}. The modal solution is exact at any ratio."
         if case.analysis.ode:
-            picked = ode_reference(dyn)
-            text += " The ODE reference is Radau (implicit)" + (
-                f", at rtol {picked[1]:.0e}"
-                if picked
-                else ", but no Radau row fits the budget: the undamped fast mode, excited "
-                "by the sudden start well above the tolerances, must be followed through "
-                "every period"
+            text += (
+                f" The ODE reference is the implicit row “{result.ode_reference}”."
+                if result.ode_reference
+                else " No Radau (implicit) row fits the budget: the undamped fast mode, "
+                "excited by the sudden start well above the tolerances, must be followed "
+                "through every period."
             )
         notes.append(Note("info", text))
-    for spring, maximum in ((12, dyn.over_horizon[0]), (23, dyn.over_horizon[1])):
+    for spring, maximum, r in (
+        (12, dyn.over_horizon[0], dyn.static[0]),
+        (23, dyn.over_horizon[1], dyn.static[1]),
+    ):
         if maximum.bound:
             notes.append(
                 Note(
                     "info",
-                    f"μ{spring} over the horizon: modes too fast to sample over it are taken "
-                    f"at their full amplitude (an upper bound, high by at most "
-                    f"{maximum.error:.2g} N·m)",
+                    f"μ{spring} over the horizon: modes too fast to sample over "
+                    f"{dyn.horizon:.4g} s are taken at their full amplitude, so the value "
+                    + (
+                        f"is an upper bound, high by at most {maximum.error / r:.2g}"
+                        if maximum.error > 0.0
+                        else "is an upper bound (the supremum, where no mode could be sampled)"
+                    ),
                 )
             )
     if scene.rope is not None and scene.rope.sheave_seed_printed is not None:
