@@ -63,12 +63,14 @@ def advance(
     terminal: Sequence[tuple[Event, int]] = (),
     watch: Sequence[tuple[Event, int]] = (),
     dense: bool = False,
+    jac: np.ndarray | None = None,
 ) -> Segment:
     """Integrate from ``t0`` to ``t1`` or to the first ``terminal`` event.
 
     ``terminal`` and ``watch`` hold (event function, direction) pairs; ``watch``
     events are recorded (for maxima: a zero of the derivative) without stopping.
     ``dense`` keeps the continuous solution (for tables of the state over time).
+    ``jac`` is a constant Jacobian for the implicit solvers of linear systems.
     """
     import numpy as np
     from scipy.integrate import solve_ivp
@@ -89,6 +91,7 @@ def advance(
         atol=atol,
         events=events or None,
         dense_output=dense,
+        **({"jac": jac} if jac is not None else {}),
     )
     if solution.status < 0:
         raise ArithmeticError(f"{method} failed at t = {solution.t[-1]:.6g} s: {solution.message}")
@@ -205,28 +208,22 @@ def linear_oscillator_maxima(
     fastest = float(np.sqrt(np.max(np.abs(np.linalg.eigvals(stiffness)))))
     atol = np.concatenate([np.ones(n), np.full(n, fastest)]) * rtol * 1e-3
     watch = [(lambda t, y, k=k: y[n + k], -1) for k in range(n)]
-    from scipy.integrate import solve_ivp
-
-    events: list[Any] = [_event(function, direction, False) for function, direction in watch]
-    options: dict[str, Any] = {"jac": jacobian} if method in ("Radau", "BDF") else {}
-    solution = solve_ivp(
+    segment = advance(
         rhs,
-        (0.0, end),
+        0.0,
         np.zeros(2 * n),
-        method=method,
+        end,
         rtol=rtol,
         atol=atol,
-        events=events,
-        **options,
+        method=method,
+        watch=watch,
+        jac=jacobian if method in ("Radau", "BDF") else None,
     )
-    if solution.status < 0:
-        raise ArithmeticError(f"{method} failed at t = {solution.t[-1]:.6g} s: {solution.message}")
     peaks, times = [0.0] * n, [0.0] * n  # x(0) = 0
     for k in range(n):
-        if solution.y[k, -1] > 0.0:
-            peaks[k], times[k] = float(solution.y[k, -1]), end
-    for k, (hit_times, states) in enumerate(zip(solution.t_events, solution.y_events, strict=True)):
-        for t, state in zip(hit_times, states, strict=True):
-            if state[k] > peaks[k]:
-                peaks[k], times[k] = float(state[k]), float(t)
+        if segment.y[k] > 0.0:
+            peaks[k], times[k] = float(segment.y[k]), segment.t
+    for k, t, state in segment.hits:
+        if state[k] > peaks[k]:
+            peaks[k], times[k] = float(state[k]), t
     return peaks, times, count[0]
