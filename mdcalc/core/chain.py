@@ -430,17 +430,22 @@ def harmonic_response(
     torques: Sequence[complex],
     spring_damping: Sequence[float] | None = None,
     absolute_damping: Sequence[float] | None = None,
+    ground_stiffness: Sequence[float] | None = None,
 ) -> tuple[np.ndarray, np.ndarray]:
     """Steady response to torques Mₖ·e^(iωt) [N·m] at ω [rad/s]: complex angle
     amplitudes X [rad] from (K - ω²J + iωC)·X = M, and the complex spring moment
     amplitudes (cₖ + iωαₖ)·(Xₖ - Xₖ₊₁) [N·m]. ``spring_damping`` αₖ acts across
-    spring k, ``absolute_damping`` on mass k against the ground [N·m·s/rad].
+    spring k, ``absolute_damping`` on mass k against the ground [N·m·s/rad],
+    ``ground_stiffness`` holds mass k to the ground (a shaft to a fixed end, a motor's
+    electromagnetic spring) [N·m/rad].
     Raises ArithmeticError when the matrix is singular (undamped resonance)."""
     difference = chain.difference_matrix()
     alpha = np.array(spring_damping if spring_damping is not None else [0.0] * (chain.size - 1))
     ground = np.array(absolute_damping if absolute_damping is not None else [0.0] * chain.size)
+    held = np.array(ground_stiffness if ground_stiffness is not None else [0.0] * chain.size)
     damping = difference.T @ np.diag(alpha) @ difference + np.diag(ground)
-    dynamic = chain.stiffness_matrix() - omega * omega * chain.mass_matrix() + 1j * omega * damping
+    stiffness = chain.stiffness_matrix() + np.diag(held)
+    dynamic = stiffness - omega * omega * chain.mass_matrix() + 1j * omega * damping
     load = np.array(torques, dtype=complex)
     scale = float(np.max(np.abs(dynamic)))
     if np.linalg.cond(dynamic) > 1e14 or scale == 0.0:

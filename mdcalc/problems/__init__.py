@@ -79,6 +79,11 @@ PROBLEMS: dict[str, ProblemSpec] = {
             "Mine hoist with head sheave: rope dynamic factors of a three-mass chain.",
         ),
         ProblemSpec(
+            "variator",
+            "variator",
+            "Impulse variator: anti-resonance absorber, clutch load χ, pendulum absorber.",
+        ),
+        ProblemSpec(
             "mount",
             "mount",
             "Engine on elastic mounts: resonances, harmonic amplitudes, transmission.",
