@@ -656,7 +656,14 @@ def _drive_methods(
             top = max(exact.fastest, 2.0 * math.pi * k / system.period)
             return values([periodic.maximum_of(series, w, top).value for _, w, _ in observables])
 
-        methods.append(Method(f"Fourier series, {k} harmonic{'s' if k > 1 else ''}", fourier_run))
+        highest = 2.0 * math.pi * k / system.period
+        # the jumps of the load ring every mode: a series that stops short of the
+        # fastest mode's harmonic cannot show its ringing
+        order = exact.fastest * system.period / (2.0 * math.pi)
+        note = f"the fastest mode is harmonic {order:.3g}" if highest < 10.0 * exact.fastest else ""
+        methods.append(
+            Method(f"Fourier series, {k} harmonic{'s' if k > 1 else ''}", fourier_run, note=note)
+        )
     if not drive.ode:
         return methods
     cycles = max(1.0, exact.fastest * system.period / (2.0 * math.pi))
