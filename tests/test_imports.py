@@ -61,3 +61,16 @@ def test_mine_hoist_without_ode_rows_does_not_import_scipy(tmp_path):
     assert heavy_modules("mine-hoist", str(CASES / "mine-hoist" / "seed_1025.toml")) == (
         "HEAVY ['scipy']"
     )
+
+
+def test_variator_closed_form_parts_do_not_import_scipy(tmp_path):
+    # Absorber, pendulum, and a drive without ODE rows are numpy only.
+    for case in ("two_disk_absorber", "absorber_damped", "pendulum"):
+        assert heavy_modules("variator", str(CASES / "variator" / f"{case}.toml")) == "HEAVY []"
+    text = (CASES / "variator" / "drive_undamped.toml").read_text(encoding="utf-8")
+    off = tmp_path / "no_ode.toml"
+    off.write_text(text.replace("[expect]", "ode = false\n\n[expect]"), encoding="utf-8")
+    assert heavy_modules("variator", str(off)) == "HEAVY []"
+    assert heavy_modules("variator", str(CASES / "variator" / "drive_undamped.toml")) == (
+        "HEAVY ['scipy']"
+    )

@@ -44,6 +44,11 @@ class Unbounded(ArithmeticError):
     """No periodic state: an undamped mode in resonance with a harmonic of the load."""
 
 
+class Unresolved(ArithmeticError):
+    """A scene outside what the closed form resolves to 8 digits (modes spread too
+    wide, or one mode far slower than the load); the message says which."""
+
+
 @dataclass(frozen=True)
 class RampSystem:
     mass: np.ndarray  # M, n×n [kg·m²]
@@ -136,11 +141,28 @@ def exact_periodic(system: RampSystem) -> Periodic:
     p0, p1 = np.concatenate([a, b]), np.concatenate([b, np.zeros(n)])
     eigenvalues, vectors = np.linalg.eig(system.first_order())
     if np.linalg.cond(vectors) > 1e12:
-        raise ArithmeticError("defective first-order matrix (a critically damped mode)")
-    growth = np.exp(eigenvalues * t)
-    gap = 1.0 - growth
-    if np.min(np.abs(gap)) <= 1e-12:
-        index = int(np.argmin(np.abs(gap)))
+        magnitudes = np.abs(eigenvalues)
+        raise Unresolved(
+            f"the modes cannot be separated (|λ| from {np.min(magnitudes):.3g} to "
+            f"{np.max(magnitudes):.3g} 1/s, or a mode damped exactly critically): "
+            "outside the range the closed form solves"
+        )
+    # The particular solution holds K⁻¹: a mode much slower than the load (|λ|T ≪ 1)
+    # makes it and the modal part cancel, losing about ε/(λT)² of the result.
+    slow = float(np.min(np.abs(eigenvalues))) * t
+    if slow == 0.0 or 2.2e-16 / slow**2 > 1e-8:
+        raise Unresolved(
+            f"a mode at {float(np.min(np.abs(eigenvalues))):.3g} rad/s is "
+            f"{2.0 * math.pi / max(slow, 1e-300):.3g} times slower than the load's "
+            f"fundamental {2.0 * math.pi / t:.6g} rad/s: the system is as good as free, "
+            "and the closed form would lose more than 8 digits; outside the range solved"
+        )
+    # 1 - e^{λT} by expm1: a mode much slower than the load (λT → 0) has a large
+    # but finite periodic part; only e^{λT} = 1 with λT ≠ 0 (λT = 2πim) is a resonance
+    gap = -np.expm1(eigenvalues * t)
+    resonant = (np.abs(gap) <= 1e-12) & (np.abs(eigenvalues * t) > math.pi)
+    if np.any(resonant):
+        index = int(np.argmax(resonant))
         order = abs(eigenvalues[index].imag) * t / (2.0 * math.pi)
         raise Unbounded(
             f"undamped resonance: a natural frequency {abs(eigenvalues[index].imag):.6g} rad/s "

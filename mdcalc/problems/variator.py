@@ -126,14 +126,14 @@ class Motor(CaseModel):
 
 class Clutch(CaseModel):
     loading_coefficient: float | None = Field(
-        default=None, gt=0, le=1e15, description="c₀ of M = c₀·ξⁿ [N·m/rad^n]"
+        default=None, ge=1e-6, le=1e15, description="c₀ of M = c₀·ξⁿ [N·m/rad^n]"
     )
     loading_coefficient_kgfm: float | None = Field(
-        default=None, gt=0, le=1e15, description="c₀ as the seed gives it [kgf·m/rad^n]"
+        default=None, ge=1e-6, le=1e15, description="c₀ as the seed gives it [kgf·m/rad^n]"
     )
-    loading_exponent: float = Field(gt=0, le=10, description="n of M = c₀·ξⁿ [-]")
+    loading_exponent: float = Field(ge=0.5, le=10, description="n of M = c₀·ξⁿ [-]")
     load_min: float = Field(default=0.0, ge=0, le=1e12, description="working range from [N·m]")
-    load_max: float = Field(gt=0, le=1e12, description="working range to [N·m]")
+    load_max: float = Field(ge=1e-6, le=1e12, description="working range to [N·m]")
     unloading_stiffness: float | None = Field(
         default=None, gt=0, le=1e15, description="c of the linearized unloading [N·m/rad]"
     )
@@ -323,7 +323,8 @@ class AbsorberScene:
         numerator = kg - self.j2 * w2
         if omega == self.omega and self.tuned and self.bg == 0.0:
             numerator = 0j
-        det = (self.c + kg - self.j1 * w2) * (kg - self.j2 * w2) - kg * kg
+        # (c + k_g - J₁ω²)(k_g - J₂ω²) - k_g², written without the k_g² - k_g² cancellation
+        det = (self.c - self.j1 * w2) * (kg - self.j2 * w2) - kg * self.j2 * w2
         if det == 0:
             raise ZeroDivisionError
         return self.m0 * numerator / det, self.m0 * kg / det
@@ -333,8 +334,8 @@ class AbsorberScene:
         if self.bg != 0.0:
             return False
         w2 = omega * omega
-        first = (self.c + self.cg - self.j1 * w2) * (self.cg - self.j2 * w2)
-        second = self.cg * self.cg
+        first = (self.c - self.j1 * w2) * (self.cg - self.j2 * w2)
+        second = self.cg * self.j2 * w2
         return abs(first - second) <= 1e-12 * max(abs(first), second)
 
     def untuned(self, omega: float) -> float | None:
@@ -390,18 +391,24 @@ def seed_amplitudes(s: AbsorberScene) -> dict[str, float]:
     d = s.cg / s.j2
     delta = d * (s.c / s.j1 - w2) - w2 * ((s.c + s.cg) / s.j1 - w2)
     top = 0.0 if s.tuned else d - w2
+    terms = (abs(d * (s.c / s.j1 - w2)), abs(w2 * ((s.c + s.cg) / s.j1 - w2)))
+    if abs(delta) <= 1e-8 * max(terms):
+        raise NotApplicable("Δ as printed loses its digits to cancellation at these scales")
     return {"a1": abs(s.m0 * top / (s.j1 * delta)), "a2": abs(s.m0 * d / (s.j1 * delta))}
 
 
 def chain_amplitudes(s: AbsorberScene) -> dict[str, float]:
     """The shared chain core: J₁ - c_g - J₂ with c from J₁ to the ground."""
-    angles, _ = harmonic_response(
-        Chain((s.j1, s.j2), (s.cg,)),
-        s.omega,
-        [s.m0, 0.0],
-        spring_damping=[s.bg],
-        ground_stiffness=[s.c, 0.0],
-    )
+    try:
+        angles, _ = harmonic_response(
+            Chain((s.j1, s.j2), (s.cg,)),
+            s.omega,
+            [s.m0, 0.0],
+            spring_damping=[s.bg],
+            ground_stiffness=[s.c, 0.0],
+        )
+    except ArithmeticError as reason:
+        raise NotApplicable(f"the 2×2 system is too ill-conditioned ({reason})") from None
     return {"a1": float(abs(angles[0])), "a2": float(abs(angles[1]))}
 
 
@@ -485,26 +492,31 @@ class ClutchLine:
 
 
 def clutch_lines(c: Clutch) -> tuple[float, float, list[ClutchLine]]:
-    """ξ range of the working loads and three lines through the curve M = c₀·ξⁿ."""
-    c0, n = c.c0, c.loading_exponent
-    x1, x2 = (c.load_min / c0) ** (1.0 / n), (c.load_max / c0) ** (1.0 / n)
-    m1, m2 = c.load_min, c.load_max
-    secant = m2 / x2
-    # least squares through the origin over ξ in [ξ₁, ξ₂]: ∫M·ξ dξ / ∫ξ² dξ
-    squares = 3.0 * c0 * (x2 ** (n + 2) - x1 ** (n + 2)) / ((n + 2) * (x2**3 - x1**3))
+    """ξ range of the working loads and three lines through the curve M = c₀·ξⁿ.
+
+    Written in y = ξ/ξ_max and r = ξ_min/ξ_max so that no power of ξ itself is formed
+    (c₀ and ξ may be far from 1): the curve is M_max·yⁿ, the least-squares slope
+    through the origin 3·(M_max/ξ_max)·(1 - r^(n+2))/((n + 2)(1 - r³))."""
+    n, m1, m2 = c.loading_exponent, c.load_min, c.load_max
+    x2 = math.exp((math.log(m2) - math.log(c.c0)) / n)
+    r = (m1 / m2) ** (1.0 / n)
+    x1 = r * x2
+    unit = m2 / x2  # slope that reaches M_max at ξ_max
+    squares = 3.0 * unit * (1.0 - r ** (n + 2)) / ((n + 2) * (1.0 - r**3))
     chord = (m2 - m1) / (x2 - x1)
     lines = []
     for name, key, slope, offset in (
-        ("secant to the top of the range, M_max/ξ_max", "secant", secant, 0.0),
+        ("secant to the top of the range, M_max/ξ_max", "secant", unit, 0.0),
         ("least squares through the origin", "least_squares", squares, 0.0),
         ("chord over the range (not through the origin)", "chord", chord, m1 - chord * x1),
     ):
-        candidates = [x1, x2]
+        k, b = slope / unit, offset / m2  # the line over M_max, in y
+        candidates = [r, 1.0]
         if n != 1.0:
-            star = (slope / (n * c0)) ** (1.0 / (n - 1.0))
-            if x1 < star < x2:
+            star = (k / n) ** (1.0 / (n - 1.0))
+            if r < star < 1.0:
                 candidates.append(star)
-        error = max(abs(offset + slope * x - c0 * x**n) for x in candidates) / m2
+        error = max(abs(b + k * y - y**n) for y in candidates)
         lines.append(ClutchLine(name, key, slope, offset, error))
     return x1, x2, lines
 
@@ -770,7 +782,7 @@ def solve(case: Case) -> Result:
             result.motor_methods = _motor_methods(case.motor)
         if case.drive is not None:
             _solve_drive(case, result)
-    except periodic.Unbounded as reason:
+    except (periodic.Unbounded, periodic.Unresolved) as reason:
         result.status, result.message = "no-answer", str(reason)
     return result
 
