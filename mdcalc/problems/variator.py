@@ -140,6 +140,9 @@ class Clutch(CaseModel):
     unloading_stiffness_kgfm: float | None = Field(
         default=None, gt=0, le=1e15, description="the same in the seed's unit [kgf·m/rad]"
     )
+    loop_area_ratio: float | None = Field(
+        default=None, ge=0, le=1, description="ψ = S₁/S of the loading loop (8.43) [-]"
+    )
 
     @model_validator(mode="after")
     def _check(self) -> Clutch:
@@ -201,7 +204,10 @@ class Drive(CaseModel):
         default=None, ge=0, le=1e12, description="b of the clutch [N·m·s/rad]"
     )
     clutch_loop_area_ratio: float | None = Field(
-        default=None, ge=0, le=1, description="ψ = S₁/S, b = ψ/(2π)·√(J·c) (8.44) [-]"
+        default=None,
+        ge=0,
+        le=1,
+        description="ψ = S₁/S, b = ψ/(2π)·√(J·c) (8.44) (default: [clutch] loop_area_ratio) [-]",
     )
     harmonics: list[int] = Field(
         default=[1, 10, 100, 1000], description="Fourier rows of the Methods table [-]"
@@ -757,10 +763,13 @@ def drive_scene(case: Case, with_machine: bool) -> DriveScene:
     inertia = d.driven_inertia
     if with_machine and case.antiresonance is not None:
         inertia += case.antiresonance.ratio**2 * case.antiresonance.machine_inertia
+    psi = d.clutch_loop_area_ratio
+    if psi is None and case.clutch is not None:
+        psi = case.clutch.loop_area_ratio
     if d.clutch_damping is not None:
         damping = d.clutch_damping
-    elif d.clutch_loop_area_ratio is not None:  # (8.44) with the two-mass model's J
-        damping = d.clutch_loop_area_ratio / (2.0 * math.pi) * math.sqrt(inertia * d.stiffness)
+    elif psi is not None:  # (8.44) with the two-mass model's J
+        damping = psi / (2.0 * math.pi) * math.sqrt(inertia * d.stiffness)
     else:
         damping = 0.0
     return DriveScene(
@@ -1134,6 +1143,17 @@ def _clutch_section(c: Clutch, drive: Drive | None, notes: list[Note]) -> Quanti
                     "do not describe the same clutch at these loads",
                 )
             )
+    if c.loop_area_ratio is not None:
+        psi = c.loop_area_ratio
+        items.append(
+            Quantity(
+                "clutch_damping_ratio",
+                "Damping ratio ζ = ψ/(4π) from the loop (8.43)–(8.44)",
+                psi / (4.0 * math.pi),
+                "",
+                f"ψ = {psi:g}; b = ψ/(2π)·√(J·c)",
+            )
+        )
     if drive is not None:
         ratio = drive.stiffness / lines[1].stiffness
         if not 0.2 < ratio < 5:
@@ -1367,6 +1387,14 @@ def _pendulum_section(p: Pendulum, notes: list[Note]) -> Quantities:
                     "(Fig. 8.16), where L is the difference of two diameters",
                 )
             )
+    else:
+        notes.append(
+            Note(
+                "info",
+                "give speed, inertia_torque and max_swing in [pendulum] to size the bob "
+                "(8.56) and check that it fits on so short a pendulum",
+            )
+        )
     if p.bifilar_pin_diameter is not None:
         items.append(
             Quantity(
