@@ -431,7 +431,9 @@ def absorber_minimum(s: AbsorberScene) -> tuple[float, float] | None:
     grid = np.geomspace(low, high, 2001)[1:-1]
     values = [value(float(w)) for w in grid]
     k = int(np.argmin(values))
-    a, b = float(grid[max(k - 1, 0)]), float(grid[min(k + 1, len(grid) - 1)])
+    if k in (0, len(grid) - 1):  # |A₁| falls all the way to a resonance: no notch
+        return None
+    a, b = float(grid[k - 1]), float(grid[k + 1])
     ratio = (math.sqrt(5.0) - 1.0) / 2.0
     for _ in range(200):
         x1, x2 = b - ratio * (b - a), a + ratio * (b - a)
@@ -442,8 +444,6 @@ def absorber_minimum(s: AbsorberScene) -> tuple[float, float] | None:
         if b - a <= 1e-15 * b:
             break
     where = 0.5 * (a + b)
-    if not grid[0] < where < grid[-1]:  # |A₁| falls all the way to a resonance's edge
-        return None
     return value(where), where
 
 

@@ -1,0 +1,620 @@
+"""Independent tests of :mod:`mdcalc.core.periodic` (periodic state of a linear system
+M·x'' + C·x' + K·x = F + s·u(τ) under a sawtooth u = u₀ + u₁·τ, τ in [0, T)).
+
+Every expected value is computed in this file, never by the module under test:
+
+* the period map by scipy's matrix exponential of an augmented first-order system
+  z = (x, x', 1, τ), z' = B·z (:func:`augmented`), built here entry by entry from M, C,
+  K, F, s, u₀, u₁; the periodic start either as the fixed point (I - Φ)·y₀ = γ of that
+  map or by stepping it from rest for as many periods as the slowest damped mode
+  needs to die out to round-off (:func:`from_rest`);
+* an independent time integration from rest with scipy's ``solve_ivp`` (DOP853,
+  rtol 1e-12), stroke by stroke with the sawtooth reset at every period start;
+* maxima over a period from a dense grid of the exact expm states, refined by 2000
+  finer exact steps and a parabola through the best (:func:`reference_maximum`);
+* the period mean from the period-averaged equation K·x̄ = F + s·ū (x and x' are
+  periodic), ū = u₀ + u₁T/2, checked against adaptive quadrature of the state;
+* the one-harmonic Fourier response from the sawtooth's first sine coefficient
+  -u₁T/π, solved here with numpy's complex solve;
+* an undamped resonance where β·T = 2π·m exactly (m = 1, 2, 5): no periodic state.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+from scipy.integrate import quad, solve_ivp
+from scipy.linalg import expm
+
+from mdcalc.core import periodic
+from mdcalc.core.periodic import (
+    RampSystem,
+    Unbounded,
+    exact_periodic,
+    fourier_periodic,
+    maximum_of,
+    ode_periodic,
+    periodic_maximum,
+    samples_for,
+)
+
+# ----------------------------------------------------------------------------- cases
+
+
+@dataclass(frozen=True)
+class Data:
+    """The system as plain lists (the test's own copy, not the module's object)."""
+
+    m: list[list[float]]
+    c: list[list[float]]
+    k: list[list[float]]
+    f: list[float]
+    s: list[float]
+    u0: float
+    u1: float
+    t: float
+
+    def system(self) -> RampSystem:
+        return RampSystem(
+            np.array(self.m, dtype=float),
+            np.array(self.c, dtype=float),
+            np.array(self.k, dtype=float),
+            np.array(self.f, dtype=float),
+            np.array(self.s, dtype=float),
+            self.u0,
+            self.u1,
+            self.t,
+        )
+
+    @property
+    def n(self) -> int:
+        return len(self.f)
+
+
+def sdof(mass: float, beta: float, zeta: float, load: float, u0: float, u1: float, t: float):
+    """One mass on a spring c = m·β² with damping b = 2ζ·m·β, load shape s = m (as the
+    variator's J·u)."""
+    return Data(
+        [[mass]],
+        [[2.0 * zeta * mass * beta]],
+        [[mass * beta * beta]],
+        [load],
+        [mass],
+        u0,
+        u1,
+        t,
+    )
+
+
+def three_mass(j2, j3, c1, c2, b1, b2, load, u0, u1, t):
+    """The variator's two-coordinate form (q₁ clutch, q₂ coupling twist), written out:
+    J₂q₁'' + b₁q₁' + c₁q₁ - c₂q₂ - b₂q₂' = J₂u,  J₃(q₁'' + q₂'') + c₂q₂ + b₂q₂' = F + J₃u.
+    Not symmetric: a test of the general (non-symmetric) path."""
+    return Data(
+        [[j2, 0.0], [j3, j3]],
+        [[b1, -b2], [0.0, b2]],
+        [[c1, -c2], [0.0, c2]],
+        [0.0, load],
+        [j2, j3],
+        u0,
+        u1,
+        t,
+    )
+
+
+# Sawtooth u = u₀ + u₁τ falling through zero over the period (as ω²Π″ does, a₀ < 0).
+DAMPED_SDOF = sdof(1.3, 9.0, 0.08, 2.0, 4.0, -8.0 / 1.1, 1.1)
+OVERDAMPED_SDOF = sdof(0.7, 5.0, 2.5, 1.0, -3.0, 6.0 / 0.9, 0.9)
+STIFF_SDOF = sdof(2.0, 50.0 * 2.0 * math.pi / 0.8, 0.05, 10.0, 6.0, -15.0, 0.8)
+DAMPED_2DOF = three_mass(1.0, 3.0, 400.0, 90.0, 3.0, 0.6, 5.0, 7.0, -14.0 / 0.7, 0.7)
+WELL_DAMPED_2DOF = three_mass(1.0, 3.0, 400.0, 90.0, 10.0, 10.0, 5.0, 7.0, -14.0 / 0.7, 0.7)
+UNDAMPED_SDOF = sdof(1.0, 2.0 * math.pi / 0.9 * 2.37, 0.0, 1.5, 2.0, -4.0 / 0.9, 0.9)
+UNDAMPED_2DOF = three_mass(1.0, 3.0, 400.0, 90.0, 0.0, 0.0, 5.0, 7.0, -14.0 / 0.7, 0.7)
+
+DAMPED = {
+    "sdof light damping": DAMPED_SDOF,
+    "sdof overdamped": OVERDAMPED_SDOF,
+    "sdof 50 turns a period": STIFF_SDOF,
+    "2-dof non-symmetric": DAMPED_2DOF,
+}
+UNDAMPED = {"sdof undamped": UNDAMPED_SDOF, "2-dof undamped": UNDAMPED_2DOF}
+
+# ----------------------------------------------------------------------------- reference
+
+
+def augmented(d: Data) -> np.ndarray:
+    """B of z' = B·z for z = (x, x', 1, τ): x'' = M⁻¹(F + s·u₀ + s·u₁·τ - C·x' - K·x)."""
+    n = d.n
+    m_inv = np.linalg.inv(np.array(d.m, dtype=float))
+    k, c = np.array(d.k, dtype=float), np.array(d.c, dtype=float)
+    f, s = np.array(d.f, dtype=float), np.array(d.s, dtype=float)
+    b = np.zeros((2 * n + 2, 2 * n + 2))
+    b[:n, n : 2 * n] = np.eye(n)
+    b[n : 2 * n, :n] = -m_inv @ k
+    b[n : 2 * n, n : 2 * n] = -m_inv @ c
+    b[n : 2 * n, 2 * n] = m_inv @ (f + s * d.u0)
+    b[n : 2 * n, 2 * n + 1] = m_inv @ (s * d.u1)
+    b[2 * n + 1, 2 * n] = 1.0  # τ' = 1
+    return b
+
+
+def period_map(d: Data) -> tuple[np.ndarray, np.ndarray]:
+    """y(T⁻) = Φ·y(0) + γ by expm of the augmented matrix over one period."""
+    n2 = 2 * d.n
+    e = expm(augmented(d) * d.t)
+    return e[:n2, :n2], e[:n2, n2]
+
+
+def fixed_point(d: Data) -> np.ndarray:
+    phi, gamma = period_map(d)
+    return np.linalg.solve(np.eye(2 * d.n) - phi, gamma)
+
+
+def slowest_decay(d: Data) -> float:
+    n = d.n
+    return float(np.min(-np.linalg.eigvals(augmented(d)[: 2 * n, : 2 * n]).real))
+
+
+def from_rest(d: Data) -> np.ndarray:
+    """Start the system at rest and step the exact period map until the slowest mode
+    has decayed by e^-40 (damped systems only)."""
+    phi, gamma = period_map(d)
+    periods = int(math.ceil(40.0 / (slowest_decay(d) * d.t))) + 5
+    y = np.zeros(2 * d.n)
+    for _ in range(periods):
+        y = phi @ y + gamma
+    return y
+
+
+def states_at(d: Data, y0: np.ndarray, tau: np.ndarray) -> np.ndarray:
+    """y(τ) from y(0) = y0, one expm per τ."""
+    b = augmented(d)
+    z0 = np.concatenate([y0, [1.0, 0.0]])
+    return np.array([(expm(b * float(t)) @ z0)[: 2 * d.n] for t in np.atleast_1d(tau)])
+
+
+def dense_states(d: Data, y0: np.ndarray, samples: int) -> tuple[np.ndarray, np.ndarray]:
+    """y on τ = jT/N, j = 0..N, by repeated exact steps expm(B·T/N)."""
+    h = d.t / samples
+    step = expm(augmented(d) * h)
+    z = np.concatenate([y0, [1.0, 0.0]])
+    out = np.empty((samples + 1, 2 * d.n))
+    for j in range(samples + 1):
+        out[j] = z[: 2 * d.n]
+        z = step @ z
+    return np.arange(samples + 1) * h, out
+
+
+def fine_peak(b: np.ndarray, z: np.ndarray, span: float, w: np.ndarray) -> tuple[float, float]:
+    """Largest w·y over [τ, τ + span] from z = (y(τ), 1, τ): 2000 exact steps
+    expm(B·span/2000), the best interior sample polished by the vertex of the parabola
+    through it and its neighbours. Returns (value, offset from τ)."""
+    n2 = len(w)
+    steps = 2000
+    h = span / steps
+    step = expm(b * h)
+    v = np.empty(steps + 1)
+    for j in range(steps + 1):
+        v[j] = w @ z[:n2]
+        z = step @ z
+    k = int(np.argmax(v))
+    best = (float(v[k]), k * h)
+    if 0 < k < steps:
+        v0, v1, v2 = v[k - 1], v[k], v[k + 1]
+        curvature = v0 - 2.0 * v1 + v2
+        if curvature < 0.0:
+            shift = 0.5 * (v0 - v2) / curvature
+            best = (float(v1 - 0.25 * (v0 - v2) * shift), (k + shift) * h)
+    return best
+
+
+def reference_maximum(d: Data, y0: np.ndarray, w: np.ndarray) -> tuple[float, float]:
+    """max over [0, T] of w·y: 64 grid points per turn of the fastest mode (at least
+    4096) of the exact expm state; around every grid local maximum near the best, and in
+    the first and last steps, 2000 finer exact steps and a parabola through the best."""
+    fastest = float(np.max(np.abs(np.linalg.eigvals(augmented(d)[: 2 * d.n, : 2 * d.n]))))
+    samples = max(4096, int(64 * fastest * d.t / (2 * math.pi)))
+    tau, y = dense_states(d, y0, samples)
+    v = y @ w
+    best = (float(v.max()), float(tau[int(np.argmax(v))]))
+    b = augmented(d)
+    slack = 1e-3 * (float(np.ptp(v)) + abs(float(v.max())))
+    starts = [
+        i - 1
+        for i in np.flatnonzero((v[1:-1] >= v[:-2]) & (v[1:-1] >= v[2:])) + 1
+        if v[i] >= v.max() - slack
+    ]
+    # a maximum can sit inside the first or last step (the state keeps moving across
+    # the load's jump at τ = 0 = T)
+    for i, span in [
+        *((i, 2 * (tau[1] - tau[0])) for i in starts),
+        (0, tau[1]),
+        (samples - 1, tau[1]),
+    ]:
+        z = np.concatenate([y[i], [1.0, tau[i]]])
+        value, offset = fine_peak(b, z, float(span), w)
+        best = max(best, (value, float(tau[i]) + offset))
+    return best
+
+
+def solve_ivp_from_rest(d: Data, periods: int) -> tuple[np.ndarray, object]:
+    """Integrate from rest stroke by stroke with DOP853; returns y at the start of the
+    last period and that period's dense solution."""
+    n = d.n
+    a = augmented(d)[: 2 * n, : 2 * n]
+    g = augmented(d)[: 2 * n, 2 * n :]  # columns for 1 and τ
+
+    def rhs(tau: float, y: np.ndarray) -> np.ndarray:
+        return a @ y + g[:, 0] + g[:, 1] * tau
+
+    y = np.zeros(2 * n)
+    for _ in range(periods):
+        run = solve_ivp(rhs, (0.0, d.t), y, method="DOP853", rtol=1e-12, atol=1e-14)
+        y = run.y[:, -1]
+    last = solve_ivp(rhs, (0.0, d.t), y, method="DOP853", rtol=1e-12, atol=1e-14, dense_output=True)
+    return y, last.sol
+
+
+def scale_of(y: np.ndarray) -> float:
+    return float(np.max(np.abs(y)))
+
+
+def component_scale(d: Data, y0: np.ndarray) -> np.ndarray:
+    """Largest |x_i|, |x_i'| over the period of the reference state: the scale each
+    component's error is measured against."""
+    _, y = dense_states(d, y0, 512)
+    scale = np.max(np.abs(y), axis=0)
+    # floors for a component that happens to stay at ~0 (a constant load: x' ≡ 0)
+    position = float(np.max(scale[: d.n]))
+    fastest = float(np.max(np.abs(np.linalg.eigvals(augmented(d)[: 2 * d.n, : 2 * d.n]))))
+    floor = np.concatenate([np.full(d.n, position), np.full(d.n, fastest * position)])
+    return np.maximum(scale, 1e-3 * floor)
+
+
+def assert_states(got: np.ndarray, expected: np.ndarray, scale: np.ndarray, tol: float) -> None:
+    got, expected = np.atleast_2d(got), np.atleast_2d(expected)
+    error = np.max(np.abs(got - expected), axis=0) / scale
+    assert np.all(error <= tol), error
+
+
+# ----------------------------------------------------------------------------- closed form
+
+
+@pytest.mark.parametrize("data", DAMPED.values(), ids=DAMPED.keys())
+def test_exact_start_is_the_state_reached_from_rest(data: Data) -> None:
+    # reference: the exact (expm) period map stepped from rest until settled
+    settled = from_rest(data)
+    scale = component_scale(data, settled)
+    solution = exact_periodic(data.system())
+    assert_states(solution.states(np.array([0.0])), settled, scale, 1e-10)
+    # and within the period, at τ off any grid the module might use
+    tau = np.array([0.013, 0.37, 0.618, 0.999]) * data.t
+    expected = states_at(data, settled, tau)
+    assert_states(solution.states(tau), expected, scale, 1e-10)
+    for i in range(2 * data.n):  # observe() agrees with states()
+        got = solution.observe(np.eye(2 * data.n)[i], tau)
+        assert np.max(np.abs(got - expected[:, i])) <= 1e-10 * scale[i]
+
+
+def test_exact_matches_solve_ivp_from_rest_two_dof() -> None:
+    # reference: an independent integration from rest (DOP853, rtol 1e-12), reset of
+    # the sawtooth at each stroke, for as many strokes as the slowest mode needs
+    d = WELL_DAMPED_2DOF
+    periods = int(math.ceil(35.0 / (slowest_decay(d) * d.t)))
+    start, sol = solve_ivp_from_rest(d, periods)
+    scale = component_scale(d, start)
+    solution = exact_periodic(d.system())
+    assert_states(solution.states(np.array([0.0])), start, scale, 1e-9)
+    tau = np.linspace(0.0, d.t, 20001)
+    dense = sol(tau)
+    for i in range(4):
+        w = np.eye(4)[i]
+        brute = float(np.max(dense[i]))
+        top = maximum_of(solution, w, solution.fastest)
+        # a grid maximum can only be below the true one, by at most the curvature
+        # times the half step squared
+        curvature = float(np.max(np.abs(np.gradient(np.gradient(dense[i], tau), tau))))
+        slack = 1e-9 * scale[i]
+        assert brute - slack <= top.value <= brute + curvature * (tau[1] - tau[0]) ** 2 + slack
+
+
+@pytest.mark.parametrize(
+    "data", [*DAMPED.values(), *UNDAMPED.values()], ids=[*DAMPED.keys(), *UNDAMPED.keys()]
+)
+def test_closed_form_is_periodic_and_solves_the_equation(data: Data) -> None:
+    solution = exact_periodic(data.system())
+    n = data.n
+    ends = solution.states(np.array([0.0, data.t]))
+    scale = component_scale(data, ends[0])
+    # y(T) = y(0): x and x' are continuous across the jump of the load
+    assert_states(ends[1], ends[0], scale, 1e-10)
+    # residual of M·x'' + C·x' + K·x - F - s·(u₀ + u₁τ) at interior points, x'' from rate()
+    tau = np.linspace(0.0, data.t, 23)[1:-1]
+    y = solution.states(tau)
+    acceleration = np.column_stack([solution.rate(np.eye(2 * n)[n + i], tau) for i in range(n)])
+    m, c, k = (np.array(v, dtype=float) for v in (data.m, data.c, data.k))
+    f, s = np.array(data.f), np.array(data.s)
+    for j, t in enumerate(tau):
+        load = f + s * (data.u0 + data.u1 * t)
+        residual = m @ acceleration[j] + c @ y[j, n:] + k @ y[j, :n] - load
+        size = (
+            np.abs(m) @ np.abs(acceleration[j])
+            + np.abs(c) @ np.abs(y[j, n:])
+            + np.abs(k) @ np.abs(y[j, :n])
+            + np.abs(load)
+        )
+        assert np.all(np.abs(residual) <= 1e-9 * size), residual
+
+
+@pytest.mark.parametrize(
+    "data", [*DAMPED.values(), *UNDAMPED.values()], ids=[*DAMPED.keys(), *UNDAMPED.keys()]
+)
+def test_start_is_the_fixed_point_of_the_period_map(data: Data) -> None:
+    # (I - Φ)·y₀ = γ with Φ, γ from expm: exact without any transient to wait for
+    expected = fixed_point(data)
+    got = exact_periodic(data.system()).states(np.array([0.0]))
+    assert_states(got, expected, component_scale(data, expected), 1e-10)
+
+
+@pytest.mark.parametrize(
+    "data", [*DAMPED.values(), *UNDAMPED.values()], ids=[*DAMPED.keys(), *UNDAMPED.keys()]
+)
+def test_mean_over_the_period_is_the_static_deflection(data: Data) -> None:
+    # averaging the equation over a period (x, x' periodic): K·x̄ = F + s·(u₀ + u₁T/2)
+    k = np.array(data.k, dtype=float)
+    mean_load = np.array(data.f) + np.array(data.s) * (data.u0 + 0.5 * data.u1 * data.t)
+    expected = np.linalg.solve(k, mean_load)
+    system = data.system()
+    assert system.mean_excitation == pytest.approx(data.u0 + 0.5 * data.u1 * data.t, rel=1e-15)
+    assert system.static() == pytest.approx(expected, rel=1e-13)
+    solution = exact_periodic(system)
+    for i in range(data.n):
+        w = np.eye(2 * data.n)[i]
+        integral, _ = quad(
+            lambda t, w=w: float(solution.observe(w, np.array([t]))[0]),
+            0.0,
+            data.t,
+            limit=400,
+            epsabs=0.0,
+            epsrel=1e-12,
+        )
+        assert integral / data.t == pytest.approx(expected[i], abs=1e-9 * abs(expected).max())
+
+
+# ----------------------------------------------------------------------------- Fourier
+
+
+def test_one_harmonic_by_hand() -> None:
+    # sawtooth: u - ū = -(u₁T/π)·Σ sin(kΩτ)/k; the first term through
+    # (K - Ω²M + iΩC)⁻¹·s gives x = x̄ + Im(X·e^{iΩτ})
+    d = DAMPED_2DOF
+    omega = 2.0 * math.pi / d.t
+    m, c, k = (np.array(v, dtype=float) for v in (d.m, d.c, d.k))
+    x = np.linalg.solve(k - omega**2 * m + 1j * omega * c, np.array(d.s) * (-d.u1 * d.t / math.pi))
+    static = np.linalg.solve(k, np.array(d.f) + np.array(d.s) * (d.u0 + 0.5 * d.u1 * d.t))
+    series = fourier_periodic(d.system(), 1)
+    tau = np.array([0.0, 0.21, 0.5, 0.66]) * d.t
+    for i in range(2):
+        expected = static[i] + (x[i] * np.exp(1j * omega * tau)).imag
+        got = series.observe(np.eye(4)[i], tau)
+        assert got == pytest.approx(expected, rel=1e-12, abs=1e-14 * abs(static).max())
+        # and the velocity
+        expected_v = (1j * omega * x[i] * np.exp(1j * omega * tau)).imag
+        got_v = series.observe(np.eye(4)[2 + i], tau)
+        assert got_v == pytest.approx(expected_v, rel=1e-12, abs=1e-14 * abs(x).max() * omega)
+
+
+@pytest.mark.parametrize(
+    "data", [DAMPED_SDOF, DAMPED_2DOF, UNDAMPED_SDOF], ids=["sdof", "2dof", "undamped"]
+)
+def test_fourier_converges_to_the_exact_state(data: Data) -> None:
+    reference = fixed_point(data)
+    tau = np.array([0.1, 0.3, 0.55, 0.8]) * data.t  # away from the jump at τ = 0
+    expected = states_at(data, reference, tau)[:, 0]
+    scale = scale_of(expected)
+    errors = []
+    for harmonics in (1, 10, 100, 1000, 10000):
+        series = fourier_periodic(data.system(), harmonics)
+        got = series.observe(np.eye(2 * data.n)[0], tau)
+        errors.append(float(np.max(np.abs(got - expected))) / scale)
+        # the mean of the series is the static deflection
+        assert series.mean[: data.n] == pytest.approx(
+            np.linalg.solve(
+                np.array(data.k, dtype=float),
+                np.array(data.f) + np.array(data.s) * (data.u0 + 0.5 * data.u1 * data.t),
+            ),
+            rel=1e-13,
+        )
+    # displacement harmonics fall off as 1/k³ past the modes: the tail error as 1/K²
+    assert errors[-1] < 1e-8
+    assert errors[-1] < errors[-2] < errors[-3]
+    # the maximum by the series' own sampling approaches the reference maximum
+    top, _ = reference_maximum(data, reference, np.eye(2 * data.n)[0])
+    series = fourier_periodic(data.system(), 3000)
+    got = maximum_of(series, np.eye(2 * data.n)[0], exact_periodic(data.system()).fastest)
+    assert got.value == pytest.approx(top, rel=1e-6)
+
+
+def test_fourier_sampled_equals_observe() -> None:
+    # the FFT sampling and the direct sum are the same series
+    d = DAMPED_2DOF
+    series = fourier_periodic(d.system(), 50)
+    samples = 256
+    tau = np.arange(samples) * d.t / samples
+    for w in np.eye(4):
+        assert series.sampled(w, samples) == pytest.approx(
+            series.observe(w, tau), abs=1e-12 * float(np.max(np.abs(series.observe(w, tau))))
+        )
+
+
+# ----------------------------------------------------------------------------- maxima
+
+
+# 200 turns a period, ζ = 0.002: hundreds of ringing peaks of nearly the same height
+RINGING_SDOF = sdof(1.0, 200.5 * 2.0 * math.pi / 0.5, 0.002, 1.0, 3.0, -12.0, 0.5)
+
+
+@pytest.mark.parametrize(
+    "data",
+    [*DAMPED.values(), UNDAMPED_2DOF, RINGING_SDOF],
+    ids=[*DAMPED.keys(), "2dof", "sdof ringing"],
+)
+def test_maximum_matches_dense_grid_and_refinement(data: Data) -> None:
+    reference = fixed_point(data)
+    solution = exact_periodic(data.system())
+    for i in range(2 * data.n):
+        w = np.eye(2 * data.n)[i]
+        for sign in (1.0, -1.0):  # the maximum and the minimum
+            expected, when = reference_maximum(data, reference, sign * w)
+            got = maximum_of(solution, sign * w, solution.fastest)
+            spread = float(np.max(np.abs(states_at(data, reference, [0.0, when])[:, i])))
+            assert got.value == pytest.approx(expected, abs=1e-9 * spread + 1e-300)
+            assert got.resolved
+
+
+def test_periodic_maximum_between_samples() -> None:
+    # f = cos(Ω(τ - τ₀)) + 0.2·cos(2Ω(τ - τ₀)): max 1.2 at τ₀, placed between samples
+    period, tau0 = 2.0, 0.7318
+    omega = 2.0 * math.pi / period
+
+    def f(tau: np.ndarray) -> np.ndarray:
+        return np.cos(omega * (tau - tau0)) + 0.2 * np.cos(2 * omega * (tau - tau0))
+
+    def rate(tau: np.ndarray) -> np.ndarray:
+        return -omega * np.sin(omega * (tau - tau0)) - 0.4 * omega * np.sin(
+            2 * omega * (tau - tau0)
+        )
+
+    value, time = periodic_maximum(f, rate, period, 256)
+    assert value == pytest.approx(1.2, rel=1e-15)
+    assert time == pytest.approx(tau0, abs=1e-7)
+
+
+def test_samples_for_resolves_the_fastest_mode() -> None:
+    for period, fastest in ((1.0, 1.0), (0.015, 2.4e3), (0.015, 4.2e6), (1.0, 3e4)):
+        samples, resolved = samples_for(period, fastest)
+        wanted = 16 * fastest * period / (2 * math.pi)
+        assert samples >= 256 and samples & (samples - 1) == 0  # a power of two
+        assert resolved == (samples >= wanted)
+        if resolved:
+            assert samples < max(2 * wanted, 512)
+    assert samples_for(1.0, 1e9) == (2**20, False)
+
+
+# ----------------------------------------------------------------------------- ODE
+
+
+ODE_CASES = {
+    "sdof damped DOP853": (DAMPED_SDOF, "DOP853"),
+    "sdof undamped DOP853": (UNDAMPED_SDOF, "DOP853"),
+    "2dof damped DOP853": (DAMPED_2DOF, "DOP853"),
+    "2dof undamped DOP853": (UNDAMPED_2DOF, "DOP853"),
+    "sdof damped Radau": (DAMPED_SDOF, "Radau"),
+    "2dof damped Radau": (DAMPED_2DOF, "Radau"),
+}
+
+
+@pytest.mark.parametrize("rtol", [1e-6, 1e-9])
+@pytest.mark.parametrize("data,method", ODE_CASES.values(), ids=ODE_CASES.keys())
+def test_ode_shooting_matches_reference(data: Data, method: str, rtol: float) -> None:
+    reference = fixed_point(data)
+    observables = [np.eye(2 * data.n)[i] for i in range(2 * data.n)]
+    expected = [reference_maximum(data, reference, w)[0] for w in observables]
+    run = ode_periodic(data.system(), observables, rtol, method)
+    assert run.evaluations > 0
+    for i, (got, want) in enumerate(zip(run.maxima, expected, strict=True)):
+        tau, y = dense_states(data, reference, 256)
+        spread = float(np.max(np.abs(y[:, i])))
+        assert abs(got - want) <= 20.0 * rtol * spread, (i, got, want)
+
+
+# ----------------------------------------------------------------------------- resonance
+
+
+@pytest.mark.parametrize("order", [1, 2, 5, 1000])
+def test_undamped_resonance_with_a_harmonic_is_unbounded(order: int) -> None:
+    # β·T = 2π·m: the m-th harmonic of the sawtooth drives an undamped mode
+    t = 0.9
+    beta = 2.0 * math.pi * order / t
+    data = sdof(1.0, beta, 0.0, 1.0, 2.0, -4.0 / t, t)
+    with pytest.raises(Unbounded) as caught:
+        exact_periodic(data.system())
+    assert isinstance(caught.value, ArithmeticError)
+    assert f"{order} ×" in str(caught.value)
+
+
+def test_two_dof_with_one_mode_at_resonance_is_unbounded() -> None:
+    # J₂ = J₃ = 1, c₁ = c₂ = c: λ² - 3c·λ + c² = 0, λ = c(3 ± √5)/2. Put the lower mode
+    # exactly on the fundamental 2π/T.
+    t = 0.5
+    omega = 2.0 * math.pi / t
+    c = omega**2 * 2.0 / (3.0 - math.sqrt(5.0))
+    data = three_mass(1.0, 1.0, c, c, 0.0, 0.0, 1.0, 1.0, -2.0 / t, t)
+    with pytest.raises(Unbounded):
+        exact_periodic(data.system())
+    # a little damping on the clutch gives a periodic state again (the fixed point)
+    damped = three_mass(1.0, 1.0, c, c, 0.05, 0.0, 1.0, 1.0, -2.0 / t, t)
+    got = exact_periodic(damped.system()).states(np.array([0.0]))
+    expected = fixed_point(damped)
+    assert_states(got, expected, component_scale(damped, expected), 1e-9)
+
+
+def test_near_resonance_is_finite_and_right() -> None:
+    # β·T = 2π·(1 + 1e-5): a large but finite periodic amplitude
+    t = 0.9
+    data = sdof(1.0, 2.0 * math.pi / t * (1.0 + 1e-5), 0.0, 1.0, 2.0, -4.0 / t, t)
+    expected = fixed_point(data)
+    got = exact_periodic(data.system()).states(np.array([0.0]))
+    # the problem's own condition number is ~1e5: allow that much round-off
+    assert_states(got, expected, component_scale(data, expected), 1e-8)
+
+
+def test_critically_damped_mode_raises_or_is_right() -> None:
+    # ζ = 1 exactly: the first-order matrix is defective. The module may refuse it
+    # (ArithmeticError) but must not return a wrong state; next to it (ζ = 1 ± 1e-9) the
+    # answer must still be right.
+    for zeta in (1.0, 1.0 + 1e-9, 1.0 - 1e-9, 1.0 + 1e-6):
+        data = sdof(1.0, 1.0, zeta, 0.3, 1.0, -2.0, 1.0)
+        expected = fixed_point(data)
+        try:
+            got = exact_periodic(data.system()).states(np.array([0.0]))
+        except Unbounded:  # pragma: no cover - would be a wrong diagnosis
+            pytest.fail("a critically damped system is not an undamped resonance")
+        except ArithmeticError:
+            assert zeta == 1.0
+            continue
+        assert_states(got, expected, component_scale(data, expected), 1e-6)
+
+
+# ----------------------------------------------------------------------------- property
+
+
+@settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(
+    mass=st.floats(0.01, 100.0),
+    ratio=st.floats(0.05, 30.0),  # β/Ω
+    zeta=st.floats(0.02, 0.9),
+    load=st.floats(-10.0, 10.0),
+    u0=st.floats(-10.0, 10.0),
+    u1=st.floats(-50.0, 50.0),
+    t=st.floats(0.01, 5.0),
+)
+def test_property_sdof_start_is_the_expm_fixed_point(mass, ratio, zeta, load, u0, u1, t) -> None:
+    beta = ratio * 2.0 * math.pi / t
+    data = sdof(mass, beta, zeta, load, u0, u1, t)
+    expected = fixed_point(data)
+    got = exact_periodic(data.system()).states(np.array([0.0, 0.4 * t]))
+    scale = np.maximum(component_scale(data, expected), 1e-300)
+    assert_states(got[0], expected, scale, 1e-9)
+    assert_states(got[1], states_at(data, expected, [0.4 * t])[0], scale, 1e-9)
+
+
+def test_module_constants_are_sane() -> None:
+    # 16 samples per turn of the fastest mode (the resolution the variator notes refer to)
+    assert periodic.SAMPLES_PER_MODE_PERIOD >= 16
+    assert periodic.MAX_SAMPLES == 2**20
