@@ -2,9 +2,12 @@
 
 from __future__ import annotations
 
+import json
+import math
 import subprocess
 import sys
 from pathlib import Path
+from typing import Any
 
 import pytest
 from typer.testing import CliRunner
@@ -42,3 +45,32 @@ def write_case(tmp_path: Path):
         return path
 
     return write
+
+
+# ------------------------------------------- checks of output shared by the physics tests
+
+
+def assert_no_traceback(result) -> None:
+    assert "Traceback" not in (result.stderr or "")
+    assert "internal error" not in (result.stderr or "")
+    assert result.exception is None or isinstance(result.exception, SystemExit)
+
+
+def strict_json(text: str) -> Any:
+    """json.loads that refuses NaN / Infinity tokens."""
+
+    def refuse(token: str) -> Any:
+        raise AssertionError(f"non-finite number {token} in JSON")
+
+    return json.loads(text, parse_constant=refuse)
+
+
+def walk_finite(node: Any, where: str = "$") -> None:
+    if isinstance(node, float):
+        assert math.isfinite(node), where
+    elif isinstance(node, dict):
+        for key, value in node.items():
+            walk_finite(value, f"{where}.{key}")
+    elif isinstance(node, list):
+        for index, value in enumerate(node):
+            walk_finite(value, f"{where}[{index}]")

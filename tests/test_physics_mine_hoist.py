@@ -34,7 +34,7 @@ import pytest
 from scipy.optimize import minimize_scalar
 from tomli_w import dumps as toml_dumps
 
-from tests.conftest import run_script
+from tests.conftest import assert_no_traceback, run_script, strict_json, walk_finite
 
 TIGHT = 1e-12  # relative, hand closed forms in 50-digit decimals
 MAXIMUM = 1e-10  # relative, maxima in time against the own grid + refinement
@@ -202,32 +202,6 @@ def first_swing(hand: dict[str, Any]) -> tuple[tuple[float, float], tuple[float,
     return brute_max(hand["b12"], hand["beta"], period), brute_max(
         hand["b23"], hand["beta"], period
     )
-
-
-def assert_no_traceback(result) -> None:
-    assert "Traceback" not in (result.stderr or "")
-    assert "internal error" not in (result.stderr or "")
-    assert result.exception is None or isinstance(result.exception, SystemExit)
-
-
-def strict_json(text: str) -> Any:
-    """json.loads that refuses NaN / Infinity tokens."""
-
-    def refuse(token: str) -> Any:
-        raise AssertionError(f"non-finite number {token} in JSON")
-
-    return json.loads(text, parse_constant=refuse)
-
-
-def walk_finite(node: Any, where: str = "$") -> None:
-    if isinstance(node, float):
-        assert math.isfinite(node), where
-    elif isinstance(node, dict):
-        for key, value in node.items():
-            walk_finite(value, f"{where}.{key}")
-    elif isinstance(node, list):
-        for index, value in enumerate(node):
-            walk_finite(value, f"{where}[{index}]")
 
 
 # ------------------------------------------------------------------ seed reference

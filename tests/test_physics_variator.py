@@ -35,7 +35,6 @@ Every expected value below is computed in this file, never copied from the progr
 from __future__ import annotations
 
 import copy
-import json
 import math
 import re
 from decimal import Decimal, getcontext, localcontext
@@ -50,7 +49,7 @@ from scipy.optimize import brentq, minimize_scalar
 from scipy.special import ellipk
 from tomli_w import dumps as toml_dumps
 
-from tests.conftest import run_script
+from tests.conftest import assert_no_traceback, run_script, strict_json, walk_finite
 
 KGF_M = 9.80665  # N·m per kgf·m (standard gravity, the seed's unit)
 
@@ -116,32 +115,6 @@ def section(document: dict[str, Any], key: str) -> dict[str, Any]:
 
 def method_rows(document: dict[str, Any], key: str) -> dict[str, dict[str, Any]]:
     return {row["method"]: row for row in section(document, key)["rows"]}
-
-
-def assert_no_traceback(result) -> None:
-    assert "Traceback" not in (result.stderr or "")
-    assert "internal error" not in (result.stderr or "")
-    assert result.exception is None or isinstance(result.exception, SystemExit)
-
-
-def strict_json(text: str) -> Any:
-    """json.loads that refuses NaN / Infinity tokens."""
-
-    def refuse(token: str) -> Any:
-        raise AssertionError(f"non-finite number {token} in JSON")
-
-    return json.loads(text, parse_constant=refuse)
-
-
-def walk_finite(node: Any, where: str = "$") -> None:
-    if isinstance(node, float):
-        assert math.isfinite(node), where
-    elif isinstance(node, dict):
-        for key, value in node.items():
-            walk_finite(value, f"{where}.{key}")
-    elif isinstance(node, list):
-        for index, value in enumerate(node):
-            walk_finite(value, f"{where}[{index}]")
 
 
 def F(x: float) -> Fraction:
