@@ -84,6 +84,11 @@ PROBLEMS: dict[str, ProblemSpec] = {
             "Impulse variator: anti-resonance absorber, clutch load χ, pendulum absorber.",
         ),
         ProblemSpec(
+            "mechanism",
+            "mechanism",
+            "One-degree-of-freedom mechanism under M(φ, ω): Kovylin's step against the ODE.",
+        ),
+        ProblemSpec(
             "mount",
             "mount",
             "Engine on elastic mounts: resonances, harmonic amplitudes, transmission.",
