@@ -89,6 +89,11 @@ PROBLEMS: dict[str, ProblemSpec] = {
             "One-degree-of-freedom mechanism under M(φ, ω): Kovylin's step against the ODE.",
         ),
         ProblemSpec(
+            "resonance",
+            "resonance",
+            "Torsional resonance: modes, Campbell table, resonant amplitudes, Mathieu stability.",
+        ),
+        ProblemSpec(
             "clutch",
             "clutch",
             "Adaptive friction clutch: slip torques, stability bound of the gain C_max.",
