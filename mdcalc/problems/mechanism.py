@@ -285,6 +285,7 @@ class Scene:
     revolutions: float
     steps: int  # per revolution
     speed_range: tuple[float, float] | None  # of a two-way table
+    breaks: tuple[float, ...] = ()  # table knots in [0, 2π): kinks of M or I
 
     @property
     def span(self) -> float:
@@ -345,6 +346,11 @@ def scene_of(case: Case) -> Scene:
         assert angles is not None and i.values is not None
         inertia = Periodic(angles, list(i.values))
     motion = case.motion
+    knots: set[float] = set()
+    for section in (t, i):
+        angles = section.table_angles()
+        if angles is not None:
+            knots.update(a % TWO_PI for a in angles)
     return Scene(
         torque,
         slope,
@@ -355,6 +361,7 @@ def scene_of(case: Case) -> Scene:
         motion.revolutions,
         motion.steps_per_revolution,
         speed_range,
+        tuple(sorted(knots)),
     )
 
 
@@ -540,17 +547,31 @@ def reference(scene: Scene, rtol: float, method: str, budget: int = EVALUATION_B
 
     t_scale = scene.span / max(scene.start_speed, math.sqrt(2 * e_scale / i0))
     atol = np.array([e_scale, t_scale]) * rtol * 1e-3
-    segment = advance(
-        rhs,
-        phi0,
-        np.array([e0, t_offset]),
-        scene.end_angle,
-        rtol=rtol,
-        atol=atol,
-        method=method,
-        terminal=[(lambda phi, y: y[0] - floor, -1)],
-        dense=True,
-    )
+    # Integrate from kink to kink of the tables: a step across a kink of M or I is
+    # rejected again and again and leaves an error no tolerance controls.
+    ends = [*knots_between(scene, phi0, scene.end_angle), scene.end_angle]
+    starts: list[float] = []
+    pieces: list[Callable[[Any], Any]] = []
+    y = np.array([e0, t_offset])
+    at = phi0
+    for end in ends:
+        segment = advance(
+            rhs,
+            at,
+            y,
+            end,
+            rtol=rtol,
+            atol=atol,
+            method=method,
+            terminal=[(lambda phi, y: y[0] - floor, -1)],
+            dense=True,
+        )
+        if segment.sol is not None:
+            starts.append(at)
+            pieces.append(segment.sol)
+        at, y = segment.t, segment.y
+        if segment.event is not None:
+            break
     if segment.event is not None:
         # E falls linearly to zero with slope M, t as 2·Δφ/ω: extrapolate the last hair
         phi_s, (e_s, t_s) = segment.t, segment.y
@@ -558,9 +579,20 @@ def reference(scene: Scene, rtol: float, method: str, budget: int = EVALUATION_B
         m_s = scene.torque(phi_s, omega_s)
         rest = max(e_s, 0.0) / -m_s if m_s < 0.0 else 0.0
         raise Stall(phi_s + rest, t_s + (2.0 * rest / omega_s if omega_s > 0 else 0.0))
-    sol = segment.sol
-    assert sol is not None
     start = phi0
+
+    def sol(phi: Any) -> Any:
+        """The dense solution, piece by piece; ``phi`` a number or an array."""
+        if np.ndim(phi) == 0:
+            k = max(bisect.bisect_right(starts, float(phi)) - 1, 0)
+            return pieces[k](phi)
+        angles = np.asarray(phi, dtype=float)
+        index = np.clip(np.searchsorted(starts, angles, side="right") - 1, 0, len(pieces) - 1)
+        out = np.empty((2, angles.size))
+        for k in np.unique(index).tolist():
+            chosen = index == k
+            out[:, chosen] = pieces[k](angles[chosen])
+        return out
 
     def speed_at(phi: float) -> float:
         if phi <= start:
@@ -587,6 +619,28 @@ def reference(scene: Scene, rtol: float, method: str, budget: int = EVALUATION_B
         time_at,
         speeds_at,
     )
+
+
+#: Beyond this many table kinks over the run the reference integrates across them.
+MAX_SEGMENTS = 4000
+
+
+def knots_between(scene: Scene, start: float, end: float) -> list[float]:
+    """The tables' knots strictly between ``start`` and ``end``, in order."""
+    if not scene.breaks:
+        return []
+    first = math.floor(start / TWO_PI)
+    out: list[float] = []
+    turn = first
+    while turn * TWO_PI < end:
+        for b in scene.breaks:
+            angle = turn * TWO_PI + b
+            if start + 1e-12 * TWO_PI < angle < end - 1e-12 * TWO_PI:
+                out.append(angle)
+                if len(out) > MAX_SEGMENTS:
+                    return []
+        turn += 1
+    return out
 
 
 # ------------------------------------------------------------- speed fluctuation
