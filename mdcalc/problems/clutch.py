@@ -94,6 +94,14 @@ class Clutch(CaseModel):
             for key in ("rolling_radius", "ramp_angle_deg", "mean_radius"):
                 if getattr(self, key) is None:
                     raise FieldError((key,), "missing: the gain C = (R_cp/r)·tan α needs it")
+        gain = self.feedback
+        key = "gain" if self.gain is not None else "ramp_angle_deg"
+        if gain > 1e6:
+            raise FieldError(
+                (key,), f"the gain (R_cp/r)·tan α = {gain:.4g} is beyond 1e6; check r and α"
+            )
+        if 0.0 < gain < 1e-12:
+            raise FieldError((key,), f"a gain of {gain:.3g} is 0 for any clutch; give 0")
         if self.spring_force is not None and self.mean_radius is None:
             raise FieldError(("mean_radius",), "missing: the torques need R_cp with F_n")
         return self
