@@ -56,6 +56,13 @@ def _guard(body: Callable[[], int], debug: bool) -> int:
     except KeyboardInterrupt:
         _stderr("mdcalc: interrupted")
         return 130
+    except BrokenPipeError:
+        # The reader went away (`mdcalc ... | head`): not a bug. Point stdout at
+        # devnull so the interpreter's final flush does not complain again.
+        import os
+
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 141
     except Exception as exc:
         if debug:
             traceback.print_exc()

@@ -220,7 +220,14 @@ class _Compiler:
             if exponent is not None and abs(exponent) > MAX_EXPONENT:
                 raise ExpressionError(f"exponent {exponent:g} is beyond ±{MAX_EXPONENT:g}")
         left, right = self.compile(node.left), self.compile(node.right)
-        return lambda env: operation(left(env), right(env))
+
+        def binary(env: Env) -> float:
+            value = operation(left(env), right(env))
+            if not math.isfinite(value):  # an overflow must not hide in min(), 0*x, a < b
+                raise OverflowError(f"{_SYMBOL[type(node.op)]} gave {value}")
+            return value
+
+        return binary
 
     def _Compare(self, node: ast.Compare) -> Compiled:
         parts = [self.compile(node.left), *(self.compile(c) for c in node.comparators)]
@@ -262,10 +269,14 @@ class _Compiler:
             count = str(low) if low == high else f"{low} to {high}"
             raise ExpressionError(f"{name}() takes {count} arguments, got {len(node.args)}")
         args = [self.compile(a) for a in node.args]
-        if len(args) == 1:
-            only = args[0]
-            return lambda env: float(function(only(env)))
-        return lambda env: float(function(*(a(env) for a in args)))
+
+        def call(env: Env) -> float:
+            value = float(function(*(a(env) for a in args)))
+            if not math.isfinite(value):
+                raise OverflowError(f"{name}() gave {value}")
+            return value
+
+        return call
 
 
 def _literal(node: ast.AST) -> float | None:

@@ -224,3 +224,22 @@ def test_new_to_stdout_and_unknown_problem(cli):
     assert result.exit_code == 0 and 'problem = "braking"' in result.stdout
     result = cli("new", "nosuch")
     assert result.exit_code == 2 and "unknown problem 'nosuch'" in result.stderr
+
+
+def test_closed_pipe_is_not_an_internal_error():
+    """`mdcalc ... --json | head` closes stdout early: no 'internal error' (exit 141)."""
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    mdcalc = Path(sys.executable).parent / "mdcalc"
+    proc = subprocess.run(
+        f"'{mdcalc}' resonance cases/resonance/inline_six.toml --json | head -c 10",
+        shell=True,
+        capture_output=True,
+        text=True,
+        cwd=Path(__file__).resolve().parent.parent,
+        timeout=60,
+    )
+    assert "internal error" not in proc.stderr
+    assert proc.stdout == '{\n  "mdcal'

@@ -63,6 +63,8 @@ LOOSE_RTOL = 1e-6
 STIFFNESS_LIMIT = 1e3
 #: Right-hand-side evaluations an ODE row may use before it is reported as too long.
 EVALUATION_BUDGET = 400_000
+#: An explicit reference that needs more than this is taken as stiff and rerun by Radau.
+EXPLICIT_BUDGET = 100_000
 TABLE_ROWS = 37
 
 # ------------------------------------------------------------------------ the case
@@ -102,6 +104,21 @@ class _Tabulated(CaseModel):
             )
         if not all(math.isfinite(a) and abs(a) <= 1e3 for a in angles):
             raise FieldError((key,), "angles beyond ±1000 rad")
+
+    def _check_closing(self, rows: list[Any]) -> None:
+        """A table that spans the whole revolution repeats its first row last."""
+        angles = self.table_angles()
+        assert angles is not None
+        if angles[-1] - angles[0] < TWO_PI * (1.0 - 1e-12):
+            return
+        first, last = rows[0], rows[-1]
+        pairs = zip(first, last, strict=True) if isinstance(first, list) else [(first, last)]
+        for a, b in pairs:
+            if abs(a - b) > 1e-9 * max(abs(a), abs(b), 1e-300):
+                raise FieldError(
+                    ("values", len(rows) - 1),
+                    f"the table spans 360°, so its last row repeats the first: {b!r} ≠ {a!r}",
+                )
 
 
 class Torque(_Tabulated):
@@ -148,6 +165,7 @@ class Torque(_Tabulated):
         for v in _flat(rows):
             if abs(v) > 1e12:
                 raise FieldError(("values",), f"torque {v:g} N·m is beyond ±1e12")
+        self._check_closing(list(rows))
         return self
 
 
@@ -168,6 +186,7 @@ class Inertia(_Tabulated):
             for v in self.values:
                 if not 0.0 < v <= 1e12:
                     raise FieldError(("values",), f"inertia {v:g} kg·m^2 is not in (0, 1e12]")
+            self._check_closing(list(self.values))
         elif self.values is not None:
             raise FieldError(("values",), "values need angles or angles_deg")
         return self
@@ -230,11 +249,29 @@ class Case(CaseBase):
                 raise FieldError(
                     (section, "formula"), f"cannot be evaluated at the start φ₀, ω₀: {exc}"
                 ) from None
-            if section == "inertia" and not value > 0.0:
-                raise FieldError(
-                    (section, "formula"), f"I(φ₀) = {value:g} kg·m^2; an inertia must be > 0"
-                )
+            if section == "inertia":
+                self._inertia_positive(expression, value)
         return self
+
+    def _inertia_positive(self, expression: Any, value: float) -> None:
+        """I(φ) > 0 over the run, checked every half degree (at most 20 000 points)."""
+        start, span = self.motion.start_angle, self.motion.revolutions * TWO_PI
+        count = min(20_000, max(2, math.ceil(span / (0.5 * DEG))))
+        phi = start
+        for k in range(count + 1):
+            phi = start + span * k / count
+            try:
+                value = expression(phi=phi)
+            except ArithmeticError as exc:
+                raise FieldError(
+                    ("inertia", "formula"), f"cannot be evaluated at φ = {phi:.6g} rad: {exc}"
+                ) from None
+            if not 0.0 < value <= 1e12:
+                raise FieldError(
+                    ("inertia", "formula"),
+                    f"I(φ) = {value:.6g} kg·m^2 at φ = {phi:.6g} rad; an inertia must be "
+                    "in (0, 1e12]",
+                )
 
 
 VARIABLES = ("phi", "omega")
@@ -340,7 +377,13 @@ def scene_of(case: Case) -> Scene:
         inertia = lambda phi: constant  # noqa: E731
     elif i.formula is not None:
         expression = parse(i.formula, ("phi",), case.parameters)
-        inertia = lambda phi: expression(phi=phi)  # noqa: E731
+
+        def inertia(phi: float) -> float:
+            value = expression(phi=phi)
+            if not value > 0.0:
+                raise ArithmeticError(f"I(φ) = {value:.6g} kg·m² at φ = {phi:.6g} rad")
+            return value
+
     else:
         angles = i.table_angles()
         assert angles is not None and i.values is not None
@@ -507,11 +550,19 @@ def stiffness_of(scene: Scene) -> float:
     if not scene.depends_on_speed:
         return 0.0
     i0 = scene.inertia(scene.start_angle)
-    # a speed typical of the run: the start, or what the start torque gives over it
-    gained = 2.0 * abs(scene.torque(scene.start_angle, scene.start_speed)) * scene.span / i0
-    omega = max(scene.start_speed, math.sqrt(gained), 1e-3)
-    c = scene.slope(scene.start_angle, omega)
-    return abs(c) / (i0 * omega) * scene.span
+    # speeds typical of the run: the start, and what the start torque gives over it
+    gained = math.sqrt(
+        2.0 * abs(scene.torque(scene.start_angle, scene.start_speed)) * scene.span / i0
+    )
+    candidates = [w for w in (scene.start_speed, 0.1 * gained, gained) if w > 0.0]
+    worst = 0.0
+    for omega in candidates:
+        try:
+            c = scene.slope(scene.start_angle, omega)
+        except ArithmeticError:
+            continue
+        worst = max(worst, abs(c) / (i0 * omega) * scene.span)
+    return worst
 
 
 def reference(scene: Scene, rtol: float, method: str, budget: int = EVALUATION_BUDGET) -> Reference:
@@ -759,8 +810,19 @@ def solve(case: Case) -> Result:
     stiffness = stiffness_of(scene)
     stiff = stiffness > STIFFNESS_LIMIT
     method, rtol = ("Radau", STIFF_REFERENCE_RTOL) if stiff else ("DOP853", REFERENCE_RTOL)
+    from mdcalc.core.ode import TooManySteps
+
     try:
-        ref = reference(scene, rtol, method)
+        try:
+            ref = reference(
+                scene, rtol, method, EXPLICIT_BUDGET if not stiff else EVALUATION_BUDGET
+            )
+        except TooManySteps:
+            if stiff:
+                raise
+            # stiffer than the start suggested: the implicit solver
+            stiff, method, rtol = True, "Radau", STIFF_REFERENCE_RTOL
+            ref = reference(scene, rtol, method)
     except Stall as stall:
         return Result(
             case,
@@ -801,6 +863,10 @@ def solve(case: Case) -> Result:
                 r = reference(scene, rtol_, method_)
             except TooManySteps as exc:
                 raise NotApplicable(str(exc)) from None
+            except Stall as stall:
+                raise NotApplicable(
+                    f"stalls at φ = {stall.angle:.6g} rad (the reference does not)"
+                ) from None
             return _values(r.final_speed, r.final_time, fluctuation_of_reference(scene, r))
 
         return run

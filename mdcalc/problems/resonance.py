@@ -46,6 +46,9 @@ from mdcalc.report import (
 TWO_PI = 2.0 * math.pi
 HZ_TO_RPM = 60.0
 MAX_MODES_SHOWN = 5
+#: The modal core polishes each mode against the whole chain (O(n³) in all):
+#: 60 masses take about 2 s. Engine-transmission models have a few tens.
+MAX_MASSES = 60
 #: A Floquet verdict within this of the boundary |trace| = 1 + det is "boundary".
 BOUNDARY = 1e-9
 
@@ -69,8 +72,8 @@ class ChainSection(CaseModel):
     @model_validator(mode="after")
     def _shape(self) -> ChainSection:
         n = len(self.inertias)
-        if not 2 <= n <= 200:
-            raise FieldError(("inertias",), f"{n} masses; a chain has 2 to 200")
+        if not 2 <= n <= MAX_MASSES:
+            raise FieldError(("inertias",), f"{n} masses; a chain has 2 to {MAX_MASSES}")
         for k, j in enumerate(self.inertias):
             if not 0.0 < j <= 1e9:
                 raise FieldError(("inertias", k), f"{j:g} kg·m^2 is not in (0, 1e9]")
@@ -389,6 +392,14 @@ def monodromy_ode(a: float, q: float, c: float, rtol: float) -> tuple[float, flo
     return float(x1 + v2), float(x1 * v2 - x2 * v1)
 
 
+def liouville(det: float, c: float) -> float:
+    """The determinant to use: the computed one (its error goes with the trace's,
+    which matters where the multipliers nearly coincide), unless cancellation has
+    spoiled it (multipliers far apart); then e^(-cπ), exact by Liouville."""
+    exact = math.exp(-c * math.pi)
+    return det if abs(det - exact) <= 1e-6 * exact else exact
+
+
 def spectral_radius(trace: float, det: float) -> float:
     """Largest |μ| of μ² - trace·μ + det = 0."""
     disc = trace * trace - 4.0 * det
@@ -445,6 +456,18 @@ def solve(case: Case) -> Result:
             )
             return result
         omega = md.frequencies[j]
+        try:
+            forced_response(section, md, j, r.order, torque, omega)
+        except ArithmeticError:
+            result.status, result.message = (
+                "no-answer",
+                f"the damped response at the resonance of mode {r.mode} cannot be resolved: "
+                "(K - ω²J + iωΞ) is singular to working precision at ω = β: the damping "
+                f"(Σ ξᵢ·aᵢ² = {dissipation:.3g} N·m·s/rad) is too small against the "
+                "stiffness, so the amplitude is practically unbounded, or the stiffnesses "
+                "span too many decades for the shaft torques to keep any digits",
+            )
+            return result
 
         def as_values(amp: Amplitudes) -> dict[str, float]:
             return {"amplitude": amp.reference_amplitude, "max_shaft_torque": amp.max_shaft_torque}
@@ -483,7 +506,7 @@ def solve(case: Case) -> Result:
         c = m.damping
         for a, q in m.points:
             trace, det = monodromy_ode(a, q, c, 1e-12)
-            result.floquet.append((a, q, trace, det))
+            result.floquet.append((a, q, trace, liouville(det, c)))
         quantities = [
             MethodQuantity(f"floquet_radius_{k + 1}", f"ρ at (a, q) = ({a:g}, {q:g})", "")
             for k, (a, q) in enumerate(m.points)
@@ -495,7 +518,8 @@ def solve(case: Case) -> Result:
             def go() -> dict[str, float]:
                 out = {}
                 for k, (a, q) in enumerate(m.points):
-                    out[f"floquet_radius_{k + 1}"] = spectral_radius(*run(a, q))
+                    trace, det = run(a, q)
+                    out[f"floquet_radius_{k + 1}"] = spectral_radius(trace, liouville(det, c))
                 return out
 
             return go
@@ -540,7 +564,7 @@ def report(result: Result) -> Report:
         if case.campbell is not None:
             sections.append(_campbell_table(c, md, case.campbell))
         if case.resonance is not None:
-            sections.append(_resonance_section(c, md, case.resonance))
+            sections.append(_resonance_section(c, md, case.resonance, result.status == "ok"))
             if case.resonance.harmonic_torque is not None and result.status == "ok":
                 sections.append(_shaft_table(c, md, case.resonance))
     if case.measured is not None:
@@ -620,7 +644,7 @@ def _campbell_table(c: ChainSection, md: Modal, cb: Campbell) -> Table:
     )
 
 
-def _resonance_section(c: ChainSection, md: Modal, r: Resonance) -> Quantities:
+def _resonance_section(c: ChainSection, md: Modal, r: Resonance, solved: bool) -> Quantities:
     j = r.mode - 1
     beta = md.frequencies[j]
     f = beta / TWO_PI
@@ -648,7 +672,7 @@ def _resonance_section(c: ChainSection, md: Modal, r: Resonance) -> Quantities:
     if r.harmonic_torque is not None and c.damping is not None:
         dissipation = math.fsum(x * a * a for x, a in zip(c.damping, md.shapes[j], strict=True))
         items.append(Quantity("modal_damping", "Σ ξᵢ·aᵢ²", dissipation, "N·m·s/rad"))
-        if dissipation > 0.0:
+        if solved:
             amp = energy_method(c, md, j, r.order, r.harmonic_torque)
             exact = forced_response(c, md, j, r.order, r.harmonic_torque, beta)
             items += [
@@ -770,7 +794,9 @@ def _mathieu_sections(m: Mathieu, result: Result) -> list[Any]:
             items.append(
                 Quantity(f"floquet_radius_{k + 1}", f"ρ = max |μ| at ({a:g}, {q:g})", rho, "")
             )
-            rows.append([a, q, trace, det, rho, state, first_approximation(a, q, c)])
+            rows.append(
+                [a, q, trace, math.exp(-c * math.pi), rho, state, first_approximation(a, q, c)]
+            )
         out.append(
             Quantities(f"Parametric resonance, c = {c:g}: x″ + c·x′ + (a - 2q·cos 2t)·x = 0", items)
         )
