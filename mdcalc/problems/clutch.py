@@ -50,16 +50,16 @@ class Pairs(CaseModel):
     driving: int = Field(ge=0, le=100, description="z₁, friction pairs of the driving group [-]")
     driven: int = Field(ge=1, le=100, description="z₂, friction pairs of the driven group [-]")
     driving_friction: float = Field(
-        gt=0, le=2, description="f₁, static friction coefficient of the driving pairs [-]"
+        ge=1e-6, le=2, description="f₁, static friction coefficient of the driving pairs [-]"
     )
     driven_friction: float = Field(
-        gt=0, le=2, description="f₂, static friction coefficient of the driven pairs [-]"
+        ge=1e-6, le=2, description="f₂, static friction coefficient of the driven pairs [-]"
     )
     driving_ratio: float = Field(
-        gt=0, le=1, description="η₁ = sliding/static friction of the driving pairs [-]"
+        ge=1e-9, le=1, description="η₁ = sliding/static friction of the driving pairs [-]"
     )
     driven_ratio: float = Field(
-        gt=0, le=1, description="η₂ = sliding/static friction of the driven pairs [-]"
+        ge=1e-9, le=1, description="η₂ = sliding/static friction of the driven pairs [-]"
     )
 
 

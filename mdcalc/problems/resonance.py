@@ -438,7 +438,18 @@ class Result:
 def solve(case: Case) -> Result:
     result = Result(case)
     if case.chain is not None:
-        result.modal = modal(case.chain)
+        import numpy as np
+
+        try:
+            with np.errstate(all="ignore"):
+                result.modal = modal(case.chain)
+        except (ArithmeticError, ValueError) as exc:
+            result.status, result.message = (
+                "no-answer",
+                f"the natural modes cannot be computed to working precision ({exc}): the "
+                "chain's inertias and stiffnesses span too many decades over its length",
+            )
+            return result
     r = case.resonance
     if r is not None and r.harmonic_torque is not None:
         assert case.chain is not None and result.modal is not None
@@ -559,6 +570,8 @@ def report(result: Result) -> Report:
     notes = list(result.notes)
     c = case.chain
     md = result.modal
+    if md is None and c is not None:
+        return Report("resonance", title, sections, notes, result.status, result.message)
     if c is not None and md is not None:
         sections += _modes_sections(c, md)
         if case.campbell is not None:
