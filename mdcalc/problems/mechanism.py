@@ -33,6 +33,7 @@ from typing import Any, Literal
 from pydantic import Field, field_validator, model_validator
 
 from mdcalc.core.ode import IMPORTS as ODE_IMPORTS
+from mdcalc.core.search import golden_maximum
 from mdcalc.core.units import rpm_to_rad_s
 from mdcalc.expr import ExpressionError, check_name, parse
 from mdcalc.methods import Method, NotApplicable, compare
@@ -764,15 +765,7 @@ def fluctuation_of_reference(scene: Scene, ref: Reference) -> Fluctuation | None
     def refine(k: int, sign: float) -> tuple[float, float]:
         low, high = grid[max(k - 1, 0)], grid[min(k + 1, samples)]
         f = lambda a: sign * ref.speed_at(a)  # noqa: E731
-        ratio = (math.sqrt(5.0) - 1.0) / 2.0
-        for _ in range(60):  # golden section on the dense solution
-            a = high - ratio * (high - low)
-            b = low + ratio * (high - low)
-            if f(a) > f(b):
-                high = b
-            else:
-                low = a
-        best = 0.5 * (low + high)
+        best = golden_maximum(f, low, high, 60)  # on the dense solution
         candidates = [(f(best), best), (f(grid[k]), grid[k])]
         value, angle = max(candidates)
         return sign * value, angle

@@ -29,6 +29,7 @@ from typing import Any, Literal
 from pydantic import Field, model_validator
 
 from mdcalc.core.ode import IMPORTS as ODE_IMPORTS
+from mdcalc.core.search import golden_maximum
 from mdcalc.methods import Method, compare
 from mdcalc.model import CaseBase, CaseModel, FieldError
 from mdcalc.report import (
@@ -334,15 +335,8 @@ def peak_response(
     grid = [low + (high - low) * k / (samples - 1) for k in range(samples)]
     values = [amplitude(w) for w in grid]
     k = values.index(max(values))
-    a, b = grid[max(k - 1, 0)], grid[min(k + 1, samples - 1)]
-    ratio = (math.sqrt(5.0) - 1.0) / 2.0
-    for _ in range(80):
-        c, d = b - ratio * (b - a), a + ratio * (b - a)
-        if amplitude(c) > amplitude(d):
-            b = d
-        else:
-            a = c
-    omega = 0.5 * (a + b)
+    low, high = grid[max(k - 1, 0)], grid[min(k + 1, samples - 1)]
+    omega = golden_maximum(amplitude, low, high, 80)
     return omega, forced_response(section, md, mode, order, torque, omega)
 
 
