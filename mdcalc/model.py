@@ -2,13 +2,22 @@
 
 Every case model is strict: ``true`` is not a number, ``nan`` and ``inf`` are
 rejected, and a misspelt key is an error (lax mode would take ``true`` as 1.0 and
-TOML's ``nan`` silently). Field descriptions end with the unit in brackets,
+TOML's ``nan`` silently). Every number, in any section, lies within
+±:data:`MAGNITUDE_LIMIT`: a finite 1e308 is as wrong as ``inf`` in a machine, and
+squaring it would overflow inside a solver. Field descriptions end with the unit in brackets,
 ``"Load mass [kg]"``; error messages quote it.
 """
 
 from __future__ import annotations
 
-from pydantic import BaseModel, ConfigDict, Field, model_validator
+from typing import Any
+
+from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
+
+#: The largest magnitude of any number in a case file (SI units). The stiffest
+#: scenes in ``cases/`` use 6e12 N/m; 1e18 leaves room and keeps products of a
+#: few inputs far from float overflow (about 1.8e308).
+MAGNITUDE_LIMIT = 1e18
 
 
 class FieldError(ValueError):
@@ -24,6 +33,31 @@ class CaseModel(BaseModel):
     """A section of a case file."""
 
     model_config = ConfigDict(strict=True, allow_inf_nan=False, extra="forbid", frozen=True)
+
+    @field_validator("*", mode="after")
+    @classmethod
+    def _within_magnitude_limit(cls, value: Any) -> Any:
+        _check_magnitude(value, ())
+        return value
+
+
+def _check_magnitude(value: Any, loc: tuple[str | int, ...]) -> None:
+    """Raise :class:`FieldError` at the first number beyond ±MAGNITUDE_LIMIT."""
+    if isinstance(value, bool) or isinstance(value, BaseModel):
+        return  # sections check their own fields
+    if isinstance(value, int | float):
+        if abs(value) > MAGNITUDE_LIMIT:
+            raise FieldError(
+                loc,
+                f"got {value!r}; beyond the range mdcalc computes in "
+                f"(|value| <= {MAGNITUDE_LIMIT:g} in SI units)",
+            )
+    elif isinstance(value, list | tuple):
+        for index, item in enumerate(value):
+            _check_magnitude(item, (*loc, index))
+    elif isinstance(value, dict):
+        for key, item in value.items():
+            _check_magnitude(item, (*loc, key))
 
 
 class Expectation(CaseModel):
