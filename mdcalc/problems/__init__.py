@@ -25,9 +25,10 @@ from __future__ import annotations
 
 import importlib
 from dataclasses import dataclass
-from typing import Any, Protocol, cast
+from typing import TYPE_CHECKING, Any, Protocol, cast
 
-from mdcalc.report import Report
+if TYPE_CHECKING:  # the CLI imports this registry; --help must not pay for report
+    from mdcalc.report import Report
 
 
 class ProblemModule(Protocol):
