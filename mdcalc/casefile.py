@@ -96,9 +96,15 @@ def write_toml_atomic(path: Path, data: dict[str, Any], force: bool = False) -> 
 
     if path.exists() and not force:
         raise InputError(path, [Problem("file exists; use --force to overwrite it")])
-    text = tomli_w.dumps(data)
+    write_text_atomic(path, tomli_w.dumps(data))
+
+
+def write_text_atomic(path: Path, text: str) -> None:
+    """Write ``text`` through a temporary file in the same folder and a rename, so a
+    reader never sees half a file; missing folders under ``path`` are made."""
     directory = path.parent if str(path.parent) else Path(".")
     try:
+        directory.mkdir(parents=True, exist_ok=True)
         fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=directory)
     except OSError as exc:
         raise InputError(path, [Problem(f"cannot write: {exc.strerror}")]) from None
@@ -149,6 +155,11 @@ def _inner_model(annotation: Any) -> Any:
         if found is not None:
             return found
     return None
+
+
+def unit_of(model: type[BaseModel], loc: tuple[str | int, ...]) -> str:
+    """The unit of the field at ``loc`` (from its description), "" if it has none."""
+    return _unit(_walk(model, loc)[1])
 
 
 def _unit(info: Any) -> str:

@@ -27,6 +27,8 @@ app = typer.Typer(
     no_args_is_help=True,
     add_completion=False,
     pretty_exceptions_enable=False,
+    # Plain click help: typer's rich help imports rich and markdown-it (~100 ms).
+    rich_markup_mode=None,
     context_settings={"help_option_names": ["-h", "--help"]},
 )
 
@@ -107,12 +109,29 @@ def _make_problem_command(spec: ProblemSpec) -> Callable[..., None]:
 
 
 for _spec in PROBLEMS.values():
-    app.command(_spec.name, help=_spec.summary)(_make_problem_command(_spec))
+    app.command(_spec.name, help=_spec.summary, short_help=_spec.summary)(
+        _make_problem_command(_spec)
+    )
+
+
+JobsOption = Annotated[
+    int,
+    typer.Option(
+        "--jobs", "-j", min=0, help="Worker processes; 0: one per core (at most one per file)."
+    ),
+]
+
+
+def _color() -> bool:
+    import os
+
+    return sys.stdout.isatty() and "NO_COLOR" not in os.environ
 
 
 @app.command("check")
 def check_command(
     paths: Annotated[list[Path], typer.Argument(help="Case files or folders.")],
+    jobs: JobsOption = 1,
     debug: DebugOption = False,
 ) -> None:
     """Run every case file that has an [expect] table; exit 1 if any value is off."""
@@ -120,9 +139,10 @@ def check_command(
     def body() -> int:
         from rich.table import Table
 
-        from mdcalc.check import check_paths
+        from mdcalc.batch import default_jobs
+        from mdcalc.check import check_paths, collect
 
-        outcome = check_paths(paths)
+        outcome = check_paths(paths, jobs or default_jobs(len(collect(paths))))
         table = Table(title="mdcalc check", title_justify="left")
         for column in ("file", "result", "expected", "got", "tolerance", ""):
             table.add_column(column, overflow="fold")
@@ -144,6 +164,208 @@ def check_command(
         return EXIT_MISMATCH if outcome.failed else 0
 
     raise typer.Exit(_guard(body, debug))
+
+
+@app.command("run")
+def run_command(
+    paths: Annotated[
+        list[Path], typer.Argument(help="Case files or folders (searched for *.toml).")
+    ],
+    jobs: JobsOption = 0,
+    out: Annotated[
+        Path | None,
+        typer.Option("--out", help="Write each result to DIR/<name>.json (atomically)."),
+    ] = None,
+    as_json: Annotated[
+        bool, typer.Option("--json", help="Write each result as one JSON line on stdout.")
+    ] = False,
+    debug: DebugOption = False,
+) -> None:
+    """Run many case files in a process pool; a summary at the end.
+
+    Exit 0 when every file computed; otherwise the worst file's code: 70 a bug,
+    2 bad input, 3 no answer.
+    """
+
+    def body() -> int:
+        import shutil
+        import time
+        from collections import Counter
+
+        from mdcalc.batch import (
+            STATUS_OF_EXIT,
+            FileRunner,
+            RunOptions,
+            collect,
+            default_jobs,
+            pool_map,
+            worst_exit,
+        )
+        from mdcalc.casefile import write_text_atomic
+
+        files = collect(paths)
+        if not files:
+            raise InputError(" ".join(map(str, paths)), [Problem("no *.toml case files here")])
+        workers = jobs or default_jobs(len(files))
+        text = not as_json and out is None
+        width = shutil.get_terminal_size().columns if sys.stdout.isatty() else 140
+        options = RunOptions(
+            json=as_json or out is not None, text=text, color=_color(), width=width
+        )
+        counts: Counter[str] = Counter()
+        failed: list[tuple[str, str]] = []
+        start = time.perf_counter()
+        outcomes = pool_map(FileRunner(options), [str(f.path) for f in files], workers)
+        for case, outcome in zip(files, outcomes, strict=True):
+            if out is not None:
+                write_text_atomic(out / case.out_name, outcome.json + "\n")
+            if as_json:
+                print(outcome.json, flush=False)
+            elif text:
+                sys.stdout.write(outcome.text)
+                print()
+            for message in outcome.messages:
+                _stderr(message)
+            counts[outcome.status] += 1
+            if outcome.exit_code != 0:
+                failed.append((outcome.path, outcome.status))
+        seconds = time.perf_counter() - start
+        _print_run_summary(counts, failed, len(files), seconds, workers, stderr=as_json)
+        return worst_exit(code for code, status in STATUS_OF_EXIT.items() if counts[status])
+
+    raise typer.Exit(_guard(body, debug))
+
+
+def _print_run_summary(
+    counts: Any, failed: list[tuple[str, str]], files: int, seconds: float, jobs: int, stderr: bool
+) -> None:
+    from rich.table import Table
+
+    table = Table()
+    table.add_column("status")
+    table.add_column("files", justify="right")
+    from mdcalc.batch import STATUS_OF_EXIT
+
+    for status in STATUS_OF_EXIT.values():
+        table.add_row(status, str(counts[status]))
+    console = _console(stderr=stderr)
+    console.print(
+        f"mdcalc run: {files} case files in {seconds:.3g} s "
+        f"({files / max(seconds, 1e-9):.4g} files/s, {jobs} job{'s' if jobs > 1 else ''})",
+        highlight=False,
+    )
+    console.print(table)
+    shown = 20
+    for path, status in failed[:shown]:
+        console.print(f"{status}: {path}", highlight=False, markup=False)
+    if len(failed) > shown:
+        console.print(f"... and {len(failed) - shown} more")
+
+
+@app.command("sweep")
+def sweep_command(
+    case: Annotated[
+        Path, typer.Argument(help="Case file (TOML).", show_default=False, metavar="CASE.toml")
+    ],
+    vary: Annotated[
+        list[str],
+        typer.Option(
+            "--vary", help="KEY=START:STOP:N, e.g. vehicle.mass=800:3000:12; repeat for a grid."
+        ),
+    ],
+    result: Annotated[
+        list[str] | None,
+        typer.Option("--result", help="A result key to tabulate (default: the key results)."),
+    ] = None,
+    out: Annotated[
+        Path | None, typer.Option("--out", help="Write the table to FILE.csv or FILE.json.")
+    ] = None,
+    jobs: JobsOption = 0,
+    debug: DebugOption = False,
+) -> None:
+    """Run one case over a grid of values: vectorized for closed forms, else in a pool.
+
+    Without --out: the table (up to 200 points) or the range of each result.
+    """
+
+    def body() -> int:
+        from mdcalc.batch import default_jobs
+        from mdcalc.sweep import evaluate, parse_vary, plan, to_csv, to_json
+
+        if out is not None and out.suffix.lower() not in (".csv", ".json"):
+            raise InputError(out, [Problem("--out takes a .csv or a .json file")])
+        sweep = plan(case, [parse_vary(v) for v in vary])
+        with _progress(sweep.points) as advance:
+            table = evaluate(sweep, result or [], jobs or default_jobs(sweep.points), advance)
+        for message in table.messages[:20]:
+            _stderr(message)
+        if len(table.messages) > 20:
+            _stderr(f"{case}: error: ... and {len(table.messages) - 20} more points")
+        how = "vectorized" if table.vectorized else "point by point"
+        if out is not None:
+            from mdcalc.casefile import write_text_atomic
+
+            text = to_csv(table) if out.suffix.lower() == ".csv" else to_json(table, sweep)
+            write_text_atomic(out, text)
+            _stderr(f"wrote {out}: {sweep.points} points, {how}")
+        else:
+            _print_sweep(table, sweep.points, how)
+        return table.exit_code
+
+    raise typer.Exit(_guard(body, debug))
+
+
+class _Progress:
+    """A rich progress bar on stderr, only when stderr is a terminal."""
+
+    def __init__(self, total: int) -> None:
+        self.total = total
+        self.bar: Any = None
+
+    def __enter__(self) -> Callable[[int], None] | None:
+        if not sys.stderr.isatty() or self.total < 2:
+            return None
+        from rich.progress import Progress
+
+        self.bar = Progress(console=_console(stderr=True), transient=True)
+        self.bar.start()
+        task = self.bar.add_task("sweep", total=self.total)
+        return lambda n: self.bar.advance(task, n)
+
+    def __exit__(self, *exc: object) -> None:
+        if self.bar is not None:
+            self.bar.stop()
+
+
+def _progress(total: int) -> _Progress:
+    return _Progress(total)
+
+
+def _print_sweep(table: Any, points: int, how: str) -> None:
+    from rich.table import Table
+
+    from mdcalc.report import format_value
+    from mdcalc.sweep import summary_rows
+
+    console = _console()
+    if points <= 200:
+        rich_table = Table(title=f"Sweep: {points} points, {how}", title_justify="left")
+        for key in table.keys:
+            unit = table.units.get(key, "")
+            rich_table.add_column(f"{key} ({unit})" if unit else key, justify="right")
+        rich_table.add_column("status", justify="right")
+        for index in range(points):
+            cells = [format_value(float(table.columns[k][index]), 6) for k in table.keys]
+            rich_table.add_row(*[c if c != "nan" else "—" for c in cells], str(table.status[index]))
+        console.print(rich_table)
+        return
+    rich_table = Table(title=f"Sweep: {points} points, {how}; range of each column")
+    for label in ("key", "unit", "min", "max"):
+        rich_table.add_column(label, justify="left" if label in ("key", "unit") else "right")
+    for row in summary_rows(table):
+        rich_table.add_row(*row)
+    console.print(rich_table)
+    console.print("write every point with --out FILE.csv or FILE.json", style="dim")
 
 
 @app.command("new")

@@ -218,7 +218,8 @@ def _(section: MethodsTable) -> dict[str, Any]:
     }
 
 
-def to_json(report: Report) -> str:
+def to_json(report: Report, indent: int | None = 2) -> str:
+    """The report as JSON; ``indent=None`` gives one line (JSON lines)."""
     document = {
         "mdcalc": __version__,
         "format": JSON_FORMAT,
@@ -235,7 +236,10 @@ def to_json(report: Report) -> str:
         "sections": [section_json(s) for s in report.sections],
         "notes": [{"level": n.level, "text": n.text} for n in report.notes],
     }
-    return json.dumps(document, indent=2, ensure_ascii=False, allow_nan=False)
+    separators = (",", ":") if indent is None else None
+    return json.dumps(
+        document, indent=indent, separators=separators, ensure_ascii=False, allow_nan=False
+    )
 
 
 # ----------------------------------------------------------------------------- rich

@@ -516,6 +516,110 @@ def _lock_warning(scene: Scene) -> str:
     return text
 
 
+# ------------------------------------------------------------------------- sweep
+
+#: Keys ``mdcalc sweep`` may vary in the vectorized form, and the scene input each sets.
+SWEEP_KEYS = {
+    "gravity": "g",
+    "vehicle.mass": "mass",
+    "vehicle.initial_speed": "v0",
+    "vehicle.initial_speed_kmh": "v0_kmh",
+    "road.adhesion": "phi",
+    "road.resistance": "psi",
+    "brakes.force": "force",
+    "brakes.deceleration": "deceleration",
+    "brakes.traction_force": "traction_force",
+    "brakes.force_multiple": "force_multiple",
+    "drag.drag_coefficient": "drag_coefficient",
+    "drag.frontal_area": "frontal_area",
+    "drag.air_density": "air_density",
+    "driver.reaction_time": "reaction_time",
+    "driver.build_up_time": "build_up_time",
+}
+
+
+def sweep(case: Case, grid: dict[str, Any]) -> dict[str, Any] | None:
+    """Every numeric result over a grid of scenes at once (numpy), by the closed
+    forms of :func:`solve`; None where the sweep needs the ODE (drag during a
+    build-up) or varies a key this form does not know."""
+    import numpy as np
+
+    from mdcalc.core.motion import constant_force_phase_array, ramp_phase_array
+
+    if any(key not in SWEEP_KEYS for key in grid):
+        return None
+    given = {SWEEP_KEYS[key]: np.asarray(values, dtype=float) for key, values in grid.items()}
+    base = scene_of(case)
+    brakes, drag, driver = case.brakes, case.drag, case.driver or Driver()
+
+    def pick(name: str, default: Any) -> Any:
+        return given.get(name, default)
+
+    mass, g = pick("mass", base.mass), pick("g", base.g)
+    v0 = pick("v0", base.v0)
+    if "v0_kmh" in given:
+        v0 = given["v0_kmh"] / 3.6
+    phi, psi = pick("phi", base.phi), pick("psi", base.psi)
+    if drag is not None:
+        k = 0.5 * (
+            pick("air_density", drag.air_density)
+            * pick("drag_coefficient", drag.drag_coefficient)
+            * pick("frontal_area", drag.frontal_area)
+        )
+    elif any(name in given for name in ("air_density", "drag_coefficient", "frontal_area")):
+        return None  # a drag section that the base case does not have
+    else:
+        k = 0.0
+    t_r = pick("reaction_time", driver.reaction_time)
+    t_b = pick("build_up_time", driver.build_up_time)
+    adhesion_force = phi * mass * g
+    if brakes is None:
+        demand = adhesion_force
+    elif brakes.force is not None:
+        demand = pick("force", brakes.force)
+    elif brakes.deceleration is not None:
+        demand = mass * pick("deceleration", brakes.deceleration)
+    else:
+        demand = pick("force_multiple", brakes.force_multiple) * pick(
+            "traction_force", brakes.traction_force
+        )
+    mass, g, v0, phi, psi, k, t_r, t_b, demand, adhesion_force = np.broadcast_arrays(
+        mass, g, v0, phi, psi, k, t_r, t_b, demand, adhesion_force
+    )
+    if np.any((k > 0.0) & (t_b > 0.0)):
+        return None  # no closed form for the build-up with drag: point by point (ODE)
+    brake_force = np.minimum(demand, adhesion_force)
+    road_force = psi * mass * g
+    reaction = constant_force_phase_array(v0, road_force, k, mass, t_r)
+    build_up = ramp_phase_array(reaction.speed, road_force, brake_force, mass, t_b)
+    braking = constant_force_phase_array(build_up.speed, road_force + brake_force, k, mass, None)
+    lecture_time = v0 * mass / demand
+    adhesion_a = phi * g
+    return {
+        "initial_speed": v0,
+        "initial_speed_kmh": v0 * 3.6,
+        "mass": mass,
+        "adhesion": phi,
+        "road_resistance": psi,
+        "drag_factor": k,
+        "brake_force_demanded": demand,
+        "demanded_deceleration": demand / mass,
+        "demanded_deceleration_g": demand / mass / g,
+        "lecture_time": lecture_time,
+        "lecture_distance": 0.5 * v0 * lecture_time,
+        "adhesion_deceleration": adhesion_a,
+        "adhesion_limited_time": v0 / adhesion_a,
+        "adhesion_limited_distance": v0**2 / (2.0 * adhesion_a),
+        "braking_force": brake_force,
+        "deceleration": (brake_force + road_force) / mass,
+        "reaction_distance": reaction.distance,
+        "build_up_distance": build_up.distance,
+        "braking_distance": braking.distance,
+        "stopping_distance": reaction.distance + build_up.distance + braking.distance,
+        "stopping_time": reaction.time + build_up.time + braking.time,
+    }
+
+
 def template() -> dict[str, Any]:
     return {
         "problem": "braking",

@@ -1,0 +1,396 @@
+"""``mdcalc sweep``: one case over a grid of parameter values.
+
+``--vary KEY=START:STOP:N`` makes N evenly spaced values of a dotted key of the case
+file (``vehicle.mass``, ``driver.reaction_time``); several ``--vary`` make the full
+grid. A problem module with a ``sweep(case, grid)`` function evaluates the whole
+grid at once with numpy (closed forms); otherwise every point is validated, solved
+and reported like a case file of its own, in the process pool of ``mdcalc run``.
+
+Pure logic: the CLI parses the options, shows progress and writes the file.
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+import re
+from collections.abc import Callable, Iterator, Sequence
+from dataclasses import dataclass, field
+from itertools import product
+from pathlib import Path
+from typing import Any
+
+from mdcalc.casefile import CaseText, read_case, unit_of, validate
+from mdcalc.errors import EXIT_BUG, EXIT_INPUT, EXIT_NO_ANSWER, EXIT_OK, InputError, Problem
+from mdcalc.runner import problem_of
+
+#: A grid larger than this is refused: 10⁷ points of a vectorized problem take
+#: about 1 GB of columns; of a per-point problem, hours.
+MAX_POINTS = 10_000_000
+
+_VARY = re.compile(r"^\s*([A-Za-z0-9_.\-]+)\s*=\s*([^:]+):([^:]+):([^:]+)\s*$")
+
+
+@dataclass(frozen=True)
+class Vary:
+    key: str  # dotted path in the case file
+    start: float
+    stop: float
+    count: int
+
+    @property
+    def loc(self) -> tuple[str | int, ...]:
+        return tuple(int(p) if p.isdigit() else p for p in self.key.split("."))
+
+    def values(self) -> list[float]:
+        if self.count == 1:
+            return [self.start]
+        step = (self.stop - self.start) / (self.count - 1)
+        return [self.start + i * step for i in range(self.count - 1)] + [self.stop]
+
+
+def parse_vary(text: str) -> Vary:
+    """``KEY=START:STOP:N`` -> :class:`Vary`; :class:`InputError` naming the option."""
+    where = f"--vary {text}"
+    match = _VARY.match(text)
+    if match is None:
+        raise InputError(
+            where, [Problem("expected KEY=START:STOP:N, e.g. vehicle.mass=800:3000:12")]
+        )
+    key, start_text, stop_text, count_text = match.groups()
+    try:
+        start, stop = float(start_text), float(stop_text)
+    except ValueError:
+        raise InputError(where, [Problem("START and STOP must be numbers")]) from None
+    if not (math.isfinite(start) and math.isfinite(stop)):
+        raise InputError(where, [Problem("START and STOP must be finite")])
+    try:
+        count = int(count_text)
+    except ValueError:
+        raise InputError(where, [Problem("N must be a whole number of points")]) from None
+    if count < 1:
+        raise InputError(where, [Problem(f"N = {count}; need at least one point")])
+    return Vary(key, start, stop, count)
+
+
+# ------------------------------------------------------------------------- the grid
+
+
+def set_key(data: dict[str, Any], loc: tuple[str | int, ...], value: Any) -> None:
+    """Set ``data[loc] = value``, making missing tables on the way."""
+    node: Any = data
+    for part in loc[:-1]:
+        if isinstance(part, int):
+            if not isinstance(node, list) or part >= len(node):
+                raise KeyError(part)
+            node = node[part]
+        else:
+            if not isinstance(node, dict):
+                raise KeyError(part)
+            node = node.setdefault(part, {})
+    last = loc[-1]
+    if isinstance(last, int):
+        if not isinstance(node, list) or last >= len(node):
+            raise KeyError(last)
+        node[last] = value
+    elif isinstance(node, dict):
+        node[last] = value
+    else:
+        raise KeyError(last)
+
+
+def _get_key(data: Any, loc: tuple[str | int, ...]) -> Any:
+    node = data
+    for part in loc:
+        try:
+            node = node[part]
+        except (KeyError, IndexError, TypeError):
+            return None
+    return node
+
+
+@dataclass
+class Plan:
+    """A validated sweep: the base case, the varied keys and their values."""
+
+    case: CaseText
+    problem: str
+    varies: list[Vary]
+    axes: list[list[float | int]]  # the values of each varied key (ints where the key is)
+
+    @property
+    def points(self) -> int:
+        return math.prod(len(a) for a in self.axes)
+
+    def grid(self) -> Iterator[tuple[float | int, ...]]:
+        """Every point of the grid; the last key varies fastest."""
+        return product(*self.axes)
+
+    def data_at(self, point: Sequence[float | int]) -> dict[str, Any]:
+        data = copy.deepcopy(self.case.data)
+        data.pop("expect", None)
+        for vary, value in zip(self.varies, point, strict=True):
+            set_key(data, vary.loc, value)
+        return data
+
+
+def plan(path: Path, varies: Sequence[Vary]) -> Plan:
+    """Read the case, check the keys, and validate the corners of the grid.
+
+    Field bounds are checked at every corner (2^k of them), so a grid whose ends are
+    valid is valid along its axes; a cross-field rule broken inside the grid shows up
+    as an invalid point.
+    """
+    case = read_case(path)
+    spec = problem_of(case)
+    module = spec.load()
+    validate(module.Case, case)  # the base case itself
+    if not varies:
+        raise InputError(path, [Problem("nothing to vary: give --vary KEY=START:STOP:N")])
+    keys = [v.key for v in varies]
+    if len(set(keys)) != len(keys):
+        raise InputError(path, [Problem(f"a key is varied twice: {', '.join(keys)}")])
+    axes: list[list[float | int]] = []
+    for vary in varies:
+        base = _get_key(case.data, vary.loc)
+        if isinstance(base, bool) or isinstance(base, str | dict | list):
+            raise InputError(
+                f"--vary {vary.key}", [Problem(f"{vary.key} is not a number in {path}")]
+            )
+        values: list[float | int] = list(vary.values())
+        if isinstance(base, int):
+            rounded: list[float | int] = [round(v) for v in values]
+            if any(
+                abs(v - r) > 1e-9 * max(1.0, abs(v)) for v, r in zip(values, rounded, strict=True)
+            ):
+                raise InputError(
+                    f"--vary {vary.key}",
+                    [Problem("the key is an integer; choose START:STOP:N with whole steps")],
+                )
+            values = list(rounded)
+        axes.append(values)
+    result = Plan(case, spec.name, list(varies), axes)
+    if result.points > MAX_POINTS:
+        raise InputError(path, [Problem(f"{result.points:,} points; the limit is {MAX_POINTS:,}")])
+    corners = product(*[(a[0], a[-1]) for a in axes]) if len(axes) <= 12 else iter(())
+    for corner in corners:
+        data = result.data_at(corner)
+        try:
+            set_text = CaseText(path, case.text, data)
+            validate(module.Case, set_text)
+        except KeyError as missing:
+            raise InputError(path, [Problem(f"no place for key {missing} in this case")]) from None
+        except InputError as exc:
+            at = ", ".join(f"{v.key} = {c:g}" for v, c in zip(varies, corner, strict=True))
+            for p in exc.problems:
+                p.message += f" (at the grid corner {at})"
+            raise
+    return result
+
+
+# ------------------------------------------------------------------------- evaluation
+
+
+@dataclass
+class Table:
+    """The sweep's result: one row per grid point, in grid order."""
+
+    keys: list[str]  # the varied keys, then the results
+    units: dict[str, str]
+    columns: dict[str, Any]  # key -> numpy array (float; NaN where a point has no value)
+    status: Any  # numpy array of exit codes per point
+    messages: list[str] = field(default_factory=list)
+    vectorized: bool = False
+
+    @property
+    def exit_code(self) -> int:
+        import numpy as np
+
+        for code in (EXIT_BUG, EXIT_INPUT, EXIT_NO_ANSWER):
+            if np.any(self.status == code):
+                return code
+        return EXIT_OK
+
+
+def _numeric(report: Any) -> dict[str, tuple[float, str]]:
+    return {
+        key: (q.value, q.unit)
+        for key, q in report.results().items()
+        if isinstance(q.value, int | float) and not isinstance(q.value, bool)
+    }
+
+
+def point_results(args: tuple[str, str, dict[str, Any]]) -> tuple[int, dict[str, Any], str]:
+    """One grid point as a case of its own: (exit code, {key: value}, message)."""
+    from mdcalc import methods
+    from mdcalc.problems import PROBLEMS
+
+    methods.MIN_TIMING_SECONDS = 2e-4  # as in batch runs: the timings are not kept
+    path, problem, data = args
+    module = PROBLEMS[problem].load()
+    try:
+        model = validate(module.Case, CaseText(Path(path), "", data))
+        report = module.report(module.solve(model))
+    except InputError as exc:
+        return EXIT_INPUT, {}, "; ".join(p.format(path) for p in exc.problems)
+    except Exception as exc:
+        return EXIT_BUG, {}, f"internal error: {type(exc).__name__}: {exc}"
+    values = {key: value for key, (value, _) in _numeric(report).items()}
+    if report.status != "ok":
+        return EXIT_NO_ANSWER, values, report.message or "no answer"
+    return EXIT_OK, values, ""
+
+
+def choose_results(sweep: Plan, results: Sequence[str]) -> tuple[list[str], dict[str, str]]:
+    """The result columns and their units, from a run of the base case.
+
+    By default the key results: the quantities of the report's Methods tables (all
+    numeric results where it has none). ``--result`` keys must be numeric results.
+    """
+    from mdcalc.report import MethodsTable
+
+    module = _module(sweep.problem)
+    report = module.report(module.solve(validate(module.Case, sweep.case)))
+    numeric = _numeric(report)
+    units = {key: unit for key, (_, unit) in numeric.items()}
+    unknown = [k for k in results if k not in numeric]
+    if unknown:
+        raise InputError(
+            "--result",
+            [
+                Problem(f"no numeric result {k!r}; this case has: {', '.join(numeric)}")
+                for k in unknown
+            ],
+        )
+    if results:
+        return list(results), units
+    keys: list[str] = []
+    for section in report.sections:
+        if isinstance(section, MethodsTable):
+            keys += [q.key for q in section.quantities if q.key in numeric and q.key not in keys]
+    return keys or list(numeric), units
+
+
+def evaluate(
+    sweep: Plan,
+    results: Sequence[str],
+    jobs: int,
+    on_done: Callable[[int], None] | None = None,
+) -> Table:
+    """Every grid point: vectorized where the problem offers it, else point by point.
+
+    ``on_done(n)`` is told of every ``n`` points finished (for a progress bar).
+    """
+    import numpy as np
+
+    module = _module(sweep.problem)
+    wanted, units = choose_results(sweep, results)
+    keys = [v.key for v in sweep.varies]
+    key_units = {v.key: unit_of(module.Case, v.loc) for v in sweep.varies}
+    units = {**key_units, **{k: units.get(k, "") for k in wanted}}
+    mesh = np.meshgrid(*[np.asarray(a, dtype=float) for a in sweep.axes], indexing="ij")
+    grid = {key: m.ravel() for key, m in zip(keys, mesh, strict=True)}
+    columns: dict[str, Any] = dict(grid)
+    kernel = getattr(module, "sweep", None)
+    vectorized = kernel(validate(module.Case, sweep.case), grid) if kernel is not None else None
+    if vectorized is not None and all(k in vectorized for k in wanted):
+        for key in wanted:
+            column = np.asarray(vectorized[key], dtype=float)
+            columns[key] = np.broadcast_to(column, (sweep.points,))
+        if on_done is not None:
+            on_done(sweep.points)
+        status = np.zeros(sweep.points, dtype=int)
+        return Table(keys + wanted, units, columns, status, vectorized=True)
+
+    from mdcalc.batch import pool_map
+
+    path = str(sweep.case.path)
+    tasks = [(path, sweep.problem, sweep.data_at(point)) for point in sweep.grid()]
+    for key in wanted:
+        columns[key] = np.full(sweep.points, np.nan)
+    status = np.zeros(sweep.points, dtype=int)
+    messages: list[str] = []
+    done = (lambda: on_done(1)) if on_done is not None else None
+    for index, (code, values, message) in enumerate(pool_map(point_results, tasks, jobs, done)):
+        status[index] = code
+        if message:
+            at = ", ".join(f"{k} = {grid[k][index]:g}" for k in keys)
+            messages.append(f"{path}: error: {at}: {message}")
+        for key in wanted:
+            if key in values:
+                columns[key][index] = values[key]
+    return Table(keys + wanted, units, columns, status, messages)
+
+
+def _module(problem: str) -> Any:
+    from mdcalc.problems import PROBLEMS
+
+    return PROBLEMS[problem].load()
+
+
+# ------------------------------------------------------------------------- output
+
+
+def _cell(value: float) -> str:
+    return "" if math.isnan(value) else f"{value:.12g}"
+
+
+def to_csv(table: Table) -> str:
+    """CSV with a header of ``key [unit]`` and a ``status`` column (0, 2, 3, 70)."""
+    import numpy as np
+
+    header = [f"{k} [{table.units[k]}]" if table.units.get(k) else k for k in table.keys]
+    lines = [",".join([*header, "status"])]
+    # Grid columns take few distinct values: format each once.
+    formatted = []
+    for key in table.keys:
+        column = table.columns[key]
+        values, inverse = np.unique(column, return_inverse=True)
+        if len(values) <= len(column) // 4:
+            strings = [_cell(v) for v in values.tolist()]
+            formatted.append([strings[i] for i in inverse.ravel().tolist()])
+        else:
+            formatted.append([_cell(v) for v in column.tolist()])
+    formatted.append([str(s) for s in table.status.tolist()])
+    lines += [",".join(row) for row in zip(*formatted, strict=True)]
+    return "\n".join(lines) + "\n"
+
+
+def to_json(table: Table, sweep: Plan) -> str:
+    import json
+
+    from mdcalc import __version__
+
+    def clean(values: Any) -> list[Any]:
+        return [None if math.isnan(v) else v for v in values.tolist()]
+
+    document = {
+        "mdcalc": __version__,
+        "format": 1,
+        "problem": sweep.problem,
+        "case": str(sweep.case.path),
+        "vary": [
+            {"key": v.key, "start": v.start, "stop": v.stop, "n": v.count} for v in sweep.varies
+        ],
+        "vectorized": table.vectorized,
+        "columns": [{"key": k, "unit": table.units.get(k, "")} for k in table.keys],
+        "values": {k: clean(table.columns[k]) for k in table.keys},
+        "status": table.status.tolist(),
+    }
+    return json.dumps(document, ensure_ascii=False, allow_nan=False)
+
+
+def summary_rows(table: Table) -> list[tuple[str, str, str, str]]:
+    """(key, unit, min, max) of each result column over the points that have it."""
+    import numpy as np
+
+    from mdcalc.report import format_value
+
+    rows = []
+    for key in table.keys:
+        column = table.columns[key]
+        finite = column[np.isfinite(column)]
+        low = format_value(float(finite.min())) if finite.size else "—"
+        high = format_value(float(finite.max())) if finite.size else "—"
+        rows.append((key, table.units.get(key, ""), low, high))
+    return rows
