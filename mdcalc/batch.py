@@ -54,8 +54,11 @@ class CaseFile:
     out_name: Path
 
 
-def collect(paths: Iterable[Path]) -> list[CaseFile]:
-    """Files as given, folders searched recursively for ``*.toml`` (sorted)."""
+def collect(paths: Iterable[Path], outputs: bool = False) -> list[CaseFile]:
+    """Files as given, folders searched recursively for ``*.toml`` (sorted).
+
+    With ``outputs``, two files that would write the same result file are an error.
+    """
     files: list[CaseFile] = []
     for path in paths:
         if path.is_dir():
@@ -69,7 +72,7 @@ def collect(paths: Iterable[Path]) -> list[CaseFile]:
         other = names.setdefault(case.out_name, case.path)
         if other != case.path:
             clashes.append(Problem(f"{other} and {case.path} would both write {case.out_name}"))
-    if clashes:
+    if clashes and outputs:
         raise InputError("mdcalc run --out", clashes)
     return files
 

@@ -162,6 +162,14 @@ def unit_of(model: type[BaseModel], loc: tuple[str | int, ...]) -> str:
     return _unit(_walk(model, loc)[1])
 
 
+def is_integer_field(model: type[BaseModel], loc: tuple[str | int, ...]) -> bool:
+    """Does the field at ``loc`` take integers only (``int``, ``int | None``)?"""
+    info = _walk(model, loc)[1]
+    annotation = getattr(info, "annotation", None)
+    kinds = set(getattr(annotation, "__args__", None) or (annotation,)) - {type(None)}
+    return kinds == {int}
+
+
 def _unit(info: Any) -> str:
     description = getattr(info, "description", None) or ""
     match = _UNIT.search(description)

@@ -203,7 +203,7 @@ def run_command(
         )
         from mdcalc.casefile import write_text_atomic
 
-        files = collect(paths)
+        files = collect(paths, outputs=out is not None)
         if not files:
             raise InputError(" ".join(map(str, paths)), [Problem("no *.toml case files here")])
         workers = jobs or default_jobs(len(files))

@@ -79,7 +79,11 @@ def compare(
         except NotApplicable as reason:
             if method.reference:
                 raise
-            rows.append(MethodRow(method.name, {}, {}, None, False, f"not applicable: {reason}"))
+            rows.append(
+                MethodRow(
+                    method.name, {}, {}, None, False, f"not applicable: {reason}", method.imports
+                )
+            )
             continue
         for k, v in values.items():
             if not math.isfinite(v):
@@ -87,7 +91,15 @@ def compare(
         if method.reference:
             reference_values = values
         rows.append(
-            MethodRow(method.name, dict(values), {}, seconds, method.reference, method.note)
+            MethodRow(
+                method.name,
+                dict(values),
+                {},
+                seconds,
+                method.reference,
+                method.note,
+                method.imports,
+            )
         )
     for row in rows:
         for q in quantities:

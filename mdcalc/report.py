@@ -83,6 +83,9 @@ class MethodRow:
     seconds: float | None  # None: the method did not run (not applicable)
     reference: bool = False
     note: str = ""
+    #: Modules the method loads (``Method.imports``); not shown, not in the JSON: the
+    #: import test checks that a scene loads scipy only where a method asks for it.
+    imports: tuple[str, ...] = ()
 
 
 @dataclass

@@ -20,7 +20,7 @@ from itertools import product
 from pathlib import Path
 from typing import Any
 
-from mdcalc.casefile import CaseText, read_case, unit_of, validate
+from mdcalc.casefile import CaseText, is_integer_field, read_case, unit_of, validate
 from mdcalc.errors import EXIT_BUG, EXIT_INPUT, EXIT_NO_ANSWER, EXIT_OK, InputError, Problem
 from mdcalc.runner import problem_of
 
@@ -158,7 +158,7 @@ def plan(path: Path, varies: Sequence[Vary]) -> Plan:
                 f"--vary {vary.key}", [Problem(f"{vary.key} is not a number in {path}")]
             )
         values: list[float | int] = list(vary.values())
-        if isinstance(base, int):
+        if is_integer_field(module.Case, vary.loc):
             rounded: list[float | int] = [round(v) for v in values]
             if any(
                 abs(v - r) > 1e-9 * max(1.0, abs(v)) for v, r in zip(values, rounded, strict=True)
@@ -174,12 +174,15 @@ def plan(path: Path, varies: Sequence[Vary]) -> Plan:
         raise InputError(path, [Problem(f"{result.points:,} points; the limit is {MAX_POINTS:,}")])
     corners = product(*[(a[0], a[-1]) for a in axes]) if len(axes) <= 12 else iter(())
     for corner in corners:
-        data = result.data_at(corner)
         try:
+            data = result.data_at(corner)
             set_text = CaseText(path, case.text, data)
             validate(module.Case, set_text)
         except KeyError as missing:
-            raise InputError(path, [Problem(f"no place for key {missing} in this case")]) from None
+            at = ", ".join(v.key for v in varies)
+            raise InputError(
+                path, [Problem(f"no place for {missing} in this case (--vary {at})")]
+            ) from None
         except InputError as exc:
             at = ", ".join(f"{v.key} = {c:g}" for v, c in zip(varies, corner, strict=True))
             for p in exc.problems:

@@ -34,6 +34,18 @@ def test_help_imports_nothing_heavy():
     assert heavy_modules("--help") == "HEAVY []"
 
 
+def test_help_loads_neither_pydantic_nor_numpy_nor_rich():
+    # `mdcalc --help` should cost little more than `import typer` (make bench).
+    probe = PROBE.replace('{{"scipy", "matplotlib", "pint"}}', '{{"pydantic", "numpy", "rich"}}')
+    done = subprocess.run(
+        [sys.executable, "-c", probe.format(args=["--help"])],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
+    assert done.stderr.strip().splitlines()[-1] == "HEAVY []"
+
+
 def test_closed_form_braking_does_not_import_scipy():
     assert heavy_modules("braking", str(CASES / "braking" / "lecture.toml")) == "HEAVY []"
 
@@ -74,3 +86,85 @@ def test_variator_closed_form_parts_do_not_import_scipy(tmp_path):
     assert heavy_modules("variator", str(CASES / "variator" / "drive_undamped.toml")) == (
         "HEAVY ['scipy']"
     )
+
+
+# ------------------------------------------------ every case file, every problem
+#
+# Written once for every registered problem: a scene may load scipy only when one of
+# its methods declares it (``Method.imports``); pint and matplotlib never (issue 9
+# brings them in behind explicit options). Two processes in all: the first learns
+# what each case's methods declare, the second runs the undeclared ones through the
+# CLI, one after another, and names the first case after which a heavy module showed.
+
+DECLARED = """
+import json, sys
+from pathlib import Path
+from mdcalc.errors import InputError
+from mdcalc.report import MethodsTable
+from mdcalc.runner import run_case
+out = {}
+for name in sys.argv[1:]:
+    try:
+        report = run_case(Path(name))
+    except InputError:
+        continue
+    rows = [row for s in report.sections if isinstance(s, MethodsTable) for row in s.rows]
+    if rows:  # a scene without a Methods table (a stall, say) declares nothing: skipped
+        out[name] = sorted({m.split(".")[0] for row in rows for m in row.imports})
+print(json.dumps(out))
+"""
+
+UNDECLARED = """
+import contextlib, io, sys
+from mdcalc.cli import main
+HEAVY = {"scipy", "pint", "matplotlib"}
+for name in sys.argv[1:]:
+    problem = name.split("::")[0]
+    sys.argv = ["mdcalc", problem, name.split("::")[1]]
+    with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(io.StringIO()):
+        try:
+            main()
+        except SystemExit:
+            pass
+    heavy = sorted({m.split(".")[0] for m in sys.modules} & HEAVY)
+    if heavy:
+        print("FIRST", name, heavy)
+        break
+else:
+    print("CLEAN", len(sys.argv))
+"""
+
+
+def _problem_of(path) -> str:
+    import tomllib
+
+    try:
+        return str(tomllib.loads(path.read_text(encoding="utf-8")).get("problem", ""))
+    except (tomllib.TOMLDecodeError, UnicodeDecodeError):
+        return ""
+
+
+def test_no_case_loads_a_heavy_module_its_methods_do_not_declare():
+    import json
+
+    from mdcalc.problems import PROBLEMS
+
+    files = [p for p in sorted(CASES.rglob("*.toml")) if _problem_of(p) in PROBLEMS]
+    assert {_problem_of(p) for p in files} == set(PROBLEMS), "a problem without cases"
+    done = subprocess.run(
+        [sys.executable, "-c", DECLARED, *map(str, files)],
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
+    assert done.returncode == 0, done.stderr
+    declared = json.loads(done.stdout)
+    undeclared = [name for name, modules in declared.items() if "scipy" not in modules]
+    # The guard can fail: some scenes do declare scipy, and the rest are many.
+    assert len(undeclared) >= len(PROBLEMS) and len(undeclared) < len(declared)
+    jobs = [f"{_problem_of(CASES.parent / n)}::{n}" for n in undeclared]
+    done = subprocess.run(
+        [sys.executable, "-c", UNDECLARED, *jobs], capture_output=True, text=True, timeout=600
+    )
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.startswith("CLEAN"), done.stdout

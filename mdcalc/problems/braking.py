@@ -573,16 +573,23 @@ def sweep(case: Case, grid: dict[str, Any]) -> dict[str, Any] | None:
     t_r = pick("reaction_time", driver.reaction_time)
     t_b = pick("build_up_time", driver.build_up_time)
     adhesion_force = phi * mass * g
-    if brakes is None:
-        demand = adhesion_force
-    elif brakes.force is not None:
-        demand = pick("force", brakes.force)
-    elif brakes.deceleration is not None:
-        demand = mass * pick("deceleration", brakes.deceleration)
-    else:
-        demand = pick("force_multiple", brakes.force_multiple) * pick(
-            "traction_force", brakes.traction_force
+    # The brakes' kind is the base case's, or the one the grid adds (validation at the
+    # grid's corners has made sure there is exactly one).
+    if "force" in given or (brakes is not None and brakes.force is not None):
+        demand = pick("force", brakes.force if brakes is not None else None)
+    elif "deceleration" in given or (brakes is not None and brakes.deceleration is not None):
+        demand = mass * pick("deceleration", brakes.deceleration if brakes is not None else None)
+    elif "traction_force" in given or "force_multiple" in given or brakes is not None:
+        if brakes is None and not ("traction_force" in given and "force_multiple" in given):
+            return None
+        demand = pick("force_multiple", brakes and brakes.force_multiple) * pick(
+            "traction_force", brakes and brakes.traction_force
         )
+    else:
+        demand = adhesion_force
+    has_brakes = brakes is not None or any(
+        name in given for name in ("force", "deceleration", "traction_force", "force_multiple")
+    )
     mass, g, v0, phi, psi, k, t_r, t_b, demand, adhesion_force = np.broadcast_arrays(
         mass, g, v0, phi, psi, k, t_r, t_b, demand, adhesion_force
     )
@@ -595,26 +602,30 @@ def sweep(case: Case, grid: dict[str, Any]) -> dict[str, Any] | None:
     braking = constant_force_phase_array(build_up.speed, road_force + brake_force, k, mass, None)
     lecture_time = v0 * mass / demand
     adhesion_a = phi * g
+    # As in the report: a quantity the scene does not show is missing (NaN) there.
+    none = np.full(v0.shape, np.nan)
+    brakes_only = (lambda values: values) if has_brakes else (lambda values: none)
+    driver_only = np.where((t_r > 0.0) | (t_b > 0.0), 1.0, np.nan)
     return {
         "initial_speed": v0,
         "initial_speed_kmh": v0 * 3.6,
         "mass": mass,
         "adhesion": phi,
-        "road_resistance": psi,
-        "drag_factor": k,
-        "brake_force_demanded": demand,
-        "demanded_deceleration": demand / mass,
-        "demanded_deceleration_g": demand / mass / g,
-        "lecture_time": lecture_time,
-        "lecture_distance": 0.5 * v0 * lecture_time,
+        "road_resistance": np.where(psi > 0.0, psi, np.nan),
+        "drag_factor": k if drag is not None else none,
+        "brake_force_demanded": brakes_only(demand),
+        "demanded_deceleration": brakes_only(demand / mass),
+        "demanded_deceleration_g": brakes_only(demand / mass / g),
+        "lecture_time": brakes_only(lecture_time),
+        "lecture_distance": brakes_only(0.5 * v0 * lecture_time),
         "adhesion_deceleration": adhesion_a,
         "adhesion_limited_time": v0 / adhesion_a,
         "adhesion_limited_distance": v0**2 / (2.0 * adhesion_a),
         "braking_force": brake_force,
         "deceleration": (brake_force + road_force) / mass,
-        "reaction_distance": reaction.distance,
-        "build_up_distance": build_up.distance,
-        "braking_distance": braking.distance,
+        "reaction_distance": reaction.distance * driver_only,
+        "build_up_distance": build_up.distance * driver_only,
+        "braking_distance": braking.distance * driver_only,
         "stopping_distance": reaction.distance + build_up.distance + braking.distance,
         "stopping_time": reaction.time + build_up.time + braking.time,
     }
