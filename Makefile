@@ -3,7 +3,7 @@ PYTHON ?= python3
 VENV   ?= .venv
 BIN     = $(VENV)/bin
 
-.PHONY: demo test install clean
+.PHONY: demo test bench install clean
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -24,11 +24,16 @@ demo: $(VENV)/.installed
 	$(BIN)/mdcalc hoist cases/hoist/crane.toml
 
 test: $(VENV)/.installed-test
-	$(BIN)/ruff check mdcalc tests
-	$(BIN)/ruff format --check mdcalc tests
+	$(BIN)/ruff check mdcalc tests bench
+	$(BIN)/ruff format --check mdcalc tests bench
 	$(BIN)/mypy mdcalc
 	$(BIN)/pytest
-	$(BIN)/mdcalc check cases
+	$(BIN)/mdcalc check cases --jobs 0
+
+# Figures for the README's performance section; not part of `make test` (timings
+# are printed, never asserted).
+bench: $(VENV)/.installed
+	$(BIN)/python bench/bench.py
 
 clean:
 	rm -rf $(VENV) build *.egg-info .pytest_cache .mypy_cache .ruff_cache

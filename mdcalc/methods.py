@@ -55,6 +55,12 @@ def timed(run: Callable[[], Mapping[str, float]]) -> tuple[Mapping[str, float], 
     return result, (time.perf_counter() - start) / repeats
 
 
+def _why_not(reason: Exception) -> str:
+    if isinstance(reason, NotApplicable):
+        return f"not applicable: {reason}"
+    return f"failed: {reason}"
+
+
 def relative_error(value: float, reference: float) -> float:
     """|value - reference| / |reference|; the absolute error where reference is 0."""
     if reference == 0.0:
@@ -76,13 +82,14 @@ def compare(
             importlib.import_module(module)
         try:
             values, seconds = timed(method.run)
-        except NotApplicable as reason:
+        except (NotApplicable, ArithmeticError) as reason:
+            # A method that breaks down on this scene (an ODE row that does not
+            # settle, say) is a finding of the table, not a failure of the run --
+            # unless it is the reference.
             if method.reference:
                 raise
             rows.append(
-                MethodRow(
-                    method.name, {}, {}, None, False, f"not applicable: {reason}", method.imports
-                )
+                MethodRow(method.name, {}, {}, None, False, _why_not(reason), method.imports)
             )
             continue
         for k, v in values.items():

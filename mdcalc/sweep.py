@@ -334,8 +334,14 @@ def _module(problem: str) -> Any:
 # ------------------------------------------------------------------------- output
 
 
-def _cell(value: float) -> str:
-    return "" if math.isnan(value) else f"{value:.12g}"
+def _formatted(column: Any) -> list[str]:
+    """Each value with 12 significant digits; "" for a missing (NaN) value."""
+    import numpy as np
+
+    text = [f"{v:.12g}" for v in column.tolist()]
+    if np.isnan(column).any():
+        text = ["" if t == "nan" else t for t in text]
+    return text
 
 
 def to_csv(table: Table) -> str:
@@ -343,20 +349,22 @@ def to_csv(table: Table) -> str:
     import numpy as np
 
     header = [f"{k} [{table.units[k]}]" if table.units.get(k) else k for k in table.keys]
-    lines = [",".join([*header, "status"])]
-    # Grid columns take few distinct values: format each once.
     formatted = []
     for key in table.keys:
-        column = table.columns[key]
+        column = np.asarray(table.columns[key], dtype=float)
         values, inverse = np.unique(column, return_inverse=True)
         if len(values) <= len(column) // 4:
-            strings = [_cell(v) for v in values.tolist()]
-            formatted.append([strings[i] for i in inverse.ravel().tolist()])
+            # A grid column takes few distinct values: format each once.
+            strings = np.array(_formatted(values), dtype=object)
+            formatted.append(strings[inverse.ravel()].tolist())
         else:
-            formatted.append([_cell(v) for v in column.tolist()])
-    formatted.append([str(s) for s in table.status.tolist()])
-    lines += [",".join(row) for row in zip(*formatted, strict=True)]
-    return "\n".join(lines) + "\n"
+            formatted.append(_formatted(column))
+    if not table.status.any():
+        formatted.append(["0"] * len(table.status))
+    else:
+        formatted.append([str(s) for s in table.status.tolist()])
+    body = "\n".join(map(",".join, zip(*formatted, strict=True)))
+    return ",".join([*header, "status"]) + "\n" + body + "\n"
 
 
 def to_json(table: Table, sweep: Plan) -> str:

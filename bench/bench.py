@@ -1,0 +1,182 @@
+"""``make bench``: the figures of the README's performance section.
+
+Each figure is a ratio or a rate measured in this one run, so that a slow or busy
+machine slows both sides alike. Nothing here asserts a time: it prints the figures
+and the issue's targets beside them. Run from the repository root.
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+from collections.abc import Callable
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+MDCALC = str(Path(sys.executable).parent / "mdcalc")
+PYTHON = sys.executable
+REPEATS = 15
+
+
+def wall(command: list[str]) -> float:
+    start = time.perf_counter()
+    subprocess.run(command, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, check=False)
+    return time.perf_counter() - start
+
+
+def best_of_interleaved(a: list[str], b: list[str], repeats: int = REPEATS) -> tuple[float, float]:
+    """Best wall time of each command, the runs interleaved (a, b, a, b, ...)."""
+    times_a, times_b = [], []
+    for _ in range(repeats):
+        times_a.append(wall(a))
+        times_b.append(wall(b))
+    return min(times_a), min(times_b)
+
+
+def row(name: str, figure: str, target: str, met: bool) -> None:
+    print(f"{name:58s} {figure:>28s}   target {target:10s} {'met' if met else 'MISSED'}")
+
+
+def startup() -> None:
+    lecture = str(ROOT / "cases" / "braking" / "lecture.toml")
+    base, ours = best_of_interleaved(
+        [PYTHON, "-c", "import typer, pydantic"], [MDCALC, "braking", lecture]
+    )
+    ratio = ours / base
+    row(
+        "mdcalc braking lecture.toml / python -c 'import typer, pydantic'",
+        f"{ours * 1e3:.0f} / {base * 1e3:.0f} ms = {ratio:.2f}",
+        "<= 1.3",
+        ratio <= 1.3,
+    )
+    base, ours = best_of_interleaved([PYTHON, "-c", "import typer"], [MDCALC, "--help"])
+    ratio = ours / base
+    row(
+        "mdcalc --help / python -c 'import typer'",
+        f"{ours * 1e3:.0f} / {base * 1e3:.0f} ms = {ratio:.2f}",
+        "<= 1.2",
+        ratio <= 1.2,
+    )
+
+
+def batch(folder: Path) -> None:
+    cases = folder / "cases"
+    cases.mkdir()
+    import random
+
+    rng = random.Random(2026)
+    for i in range(1000):
+        (cases / f"case_{i:04d}.toml").write_text(
+            'problem = "braking"\n'
+            f"[vehicle]\nmass = {rng.uniform(800, 3000):.1f}\n"
+            f"initial_speed_kmh = {rng.uniform(30, 150):.1f}\n"
+            f"[road]\nadhesion = {rng.uniform(0.1, 0.9):.3f}\nresistance = 0.015\n"
+            f"[driver]\nreaction_time = {rng.uniform(0.5, 1.5):.2f}\nbuild_up_time = 0.2\n",
+            encoding="utf-8",
+        )
+    best = min(wall([MDCALC, "run", str(cases), "--jobs", "2", "--json"]) for _ in range(3))
+    rate = 1000 / best
+    row(
+        "mdcalc run: 1000 braking cases, --jobs 2 --json (wall)",
+        f"{best:.2f} s = {rate:.0f} cases/s",
+        ">= 1000/s",
+        rate >= 1000,
+    )
+    out = folder / "out"
+    best = min(
+        wall([MDCALC, "run", str(cases), "--jobs", "2", "--out", str(out)]) for _ in range(3)
+    )
+    rate = 1000 / best
+    row(
+        "mdcalc run: the same, --out DIR (1000 files written)",
+        f"{best:.2f} s = {rate:.0f} cases/s",
+        ">= 1000/s",
+        rate >= 1000,
+    )
+
+
+def sweep(folder: Path) -> None:
+    lecture = str(ROOT / "cases" / "braking" / "lecture.toml")
+    grid = ["--vary", "vehicle.mass=800:3000:1000", "--vary", "vehicle.initial_speed=5:50:1000"]
+    best = min(wall([MDCALC, "sweep", lecture, *grid]) for _ in range(3))
+    row(
+        "mdcalc sweep: 10^6 braking points, summary on stdout", f"{best:.2f} s", "<= 2 s", best <= 2
+    )
+    csv = folder / "sweep.csv"
+    best = min(wall([MDCALC, "sweep", lecture, *grid, "--out", str(csv)]) for _ in range(3))
+    row("mdcalc sweep: the same, --out sweep.csv (36 MB)", f"{best:.2f} s", "<= 2 s", best <= 2)
+
+
+def timed(run: Callable[[], object], repeats: int = 5) -> float:
+    best = float("inf")
+    for _ in range(repeats):
+        start = time.perf_counter()
+        run()
+        best = min(best, time.perf_counter() - start)
+    return best
+
+
+def mine_hoist() -> None:
+    import numpy as np
+
+    from mdcalc.casefile import read_case, validate
+    from mdcalc.core import chain as chains
+    from mdcalc.core.ode import TooManySteps, linear_oscillator_maxima
+    from mdcalc.problems import mine_hoist as mh
+
+    for name, target in (("seed_1025", 0.1), ("stiff_chord", 0.2)):
+        case = validate(mh.Case, read_case(ROOT / "cases" / "mine-hoist" / f"{name}.toml"))
+        scene = mh.scene_at(case)
+        dyn = mh.dynamics(scene)
+        a, f = chains.moment_equations(scene.chain, scene.torques)
+        r = np.array(dyn.static)
+        exact = mh.first_swing_factors(scene)
+        modal = timed(lambda: mh.first_swing_factors(scene))  # noqa: B023
+        stiff = mh.frequency_ratio(dyn) >= mh.STIFF_RATIO
+        for method in ("DOP853", "Radau") if stiff else ("DOP853",):
+            outcome: dict[str, float] = {}
+
+            def run() -> None:
+                peaks, _, _ = linear_oscillator_maxima(
+                    a * r[None, :] / r[:, None],  # noqa: B023
+                    f / r,  # noqa: B023
+                    dyn.period,  # noqa: B023
+                    1e-10,
+                    method,  # noqa: B023
+                    max_evaluations=400_000,
+                )
+                outcome["mu12"], outcome["mu23"] = peaks[0], peaks[1]
+
+            try:
+                seconds = timed(run, repeats=3 if not stiff else 1)
+            except TooManySteps:
+                row(f"mine-hoist {name}: ODE {method} rtol 1e-10", "> 4e5 evaluations", "", False)
+                continue
+            error = max(abs(outcome[k] - exact[k]) / exact[k] for k in ("mu12", "mu23"))
+            row(
+                f"mine-hoist {name} (β₂/β₁ {mh.frequency_ratio(dyn):.0f}): ODE {method} 1e-10",
+                f"{seconds * 1e3:.0f} ms, err {error:.1e}",
+                f"<= {target * 1e3:.0f} ms",
+                seconds <= target,
+            )
+        row(f"mine-hoist {name}: modal solution (the reference)", f"{modal * 1e3:.2f} ms", "", True)
+
+
+def main() -> None:
+    os.environ.pop("NO_COLOR", None)
+    print(f"mdcalc benchmarks: {os.cpu_count()} cores, Python {sys.version.split()[0]}")
+    with tempfile.TemporaryDirectory() as tmp:
+        folder = Path(tmp)
+        startup()
+        batch(folder)
+        sweep(folder)
+        mine_hoist()
+        shutil.rmtree(folder / "cases", ignore_errors=True)
+
+
+if __name__ == "__main__":
+    main()
