@@ -140,13 +140,13 @@ def mine_hoist() -> None:
         for method in ("DOP853", "Radau") if stiff else ("DOP853",):
             outcome: dict[str, float] = {}
 
-            def run() -> None:
+            def run(method: str = method, outcome: dict[str, float] = outcome) -> None:
                 peaks, _, _ = linear_oscillator_maxima(
                     a * r[None, :] / r[:, None],  # noqa: B023
                     f / r,  # noqa: B023
                     dyn.period,  # noqa: B023
                     1e-10,
-                    method,  # noqa: B023
+                    method,
                     max_evaluations=400_000,
                 )
                 outcome["mu12"], outcome["mu23"] = peaks[0], peaks[1]
