@@ -74,6 +74,7 @@ def read_case(path: Path) -> CaseText:
             line, column = int(match.group(1)), int(match.group(2))
         elif _TOML_EOF.search(message):
             line = text.count("\n") + 1
+            column = len(text) - (text.rfind("\n") + 1) + 1  # just past the last character
         reason = _TOML_POSITION.sub("", _TOML_EOF.sub("", message)).strip()
         raise InputError(
             path, [Problem(f"TOML syntax: {reason}", line=line, column=column)]
@@ -86,7 +87,8 @@ def validate(model: type[M], case: CaseText) -> M:
     try:
         return model.model_validate(case.data)
     except ValidationError as exc:
-        problems = [_problem_from_error(model, case, err) for err in exc.errors()]
+        errors = _one_union_member(model, exc.errors())
+        problems = [_problem_from_error(model, case, err) for err in errors]
         raise InputError(case.path, problems) from None
 
 
@@ -188,10 +190,86 @@ def _show(value: Any) -> str:
     return repr(value)
 
 
+#: Error kinds that say "this value is of another type": a union member that gives
+#: only these is not the member the user meant.
+_TYPE_KINDS = {
+    "float_type", "int_type", "bool_type", "string_type", "list_type", "dict_type",
+    "model_type", "model_attributes_type", "literal_error", "int_from_float", "float_parsing",
+}  # fmt: skip
+
+
+def _split_loc(
+    model: type[BaseModel], loc: tuple[str | int, ...], kind: str
+) -> tuple[tuple[str | int, ...], tuple[int, tuple[str, ...]]]:
+    """The key path of an error without pydantic's tags (union members such as
+    ``list[float]``, validator names), and where in it the tags stood."""
+    clean: list[str | int] = []
+    tags: list[str] = []
+    where = -1
+    current: Any = model
+    for index, part in enumerate(loc):
+        if isinstance(part, int):
+            clean.append(part)
+            continue
+        fields = getattr(current, "model_fields", None)
+        last = index == len(loc) - 1
+        if fields is not None and part in fields:
+            clean.append(part)
+            current = _inner_model(fields[part].annotation)
+        elif fields is not None and last and kind == "extra_forbidden":
+            clean.append(part)  # the unknown key itself
+        elif fields is None and current is None and not _looks_like_tag(part):
+            clean.append(part)  # a key of a table of free keys ([parameters], [expect])
+        else:
+            if where < 0:
+                where = len(clean)
+            tags.append(part)
+            if _inner_model_named(current, part) is not None:
+                current = _inner_model_named(current, part)
+    return tuple(clean), (where, tuple(tags))
+
+
+def _looks_like_tag(part: str) -> bool:
+    return "[" in part or part.startswith(("function-", "union")) or part in _SCALAR_TAGS
+
+
+_SCALAR_TAGS = {"float", "int", "str", "bool", "none"}
+
+
+def _inner_model_named(current: Any, name: str) -> Any:
+    """A union member model named by a pydantic tag (a model class name)."""
+    if isinstance(current, type) and current.__name__ == name:
+        return current
+    for arg in getattr(current, "__args__", ()) or ():
+        if isinstance(arg, type) and arg.__name__ == name:
+            return arg
+    return None
+
+
+def _one_union_member(model: type[BaseModel], errors: list[Any]) -> list[Any]:
+    """Where a value fits no member of a union, pydantic reports every member's
+    errors; keep the member the user most likely meant (the fewest type errors)."""
+    members: dict[tuple[str | int, ...], dict[tuple[str, ...], list[tuple[int, Any]]]] = {}
+    kept: list[tuple[int, Any]] = []
+    for index, err in enumerate(errors):
+        clean, (where, tags) = _split_loc(model, tuple(err["loc"]), err["type"])
+        entry = (index, {**err, "loc": clean})
+        members_tags = tuple(t for t in tags if not t.startswith(("function-", "union")))
+        if not members_tags:
+            kept.append(entry)
+            continue
+        members.setdefault(clean[:where], {}).setdefault(members_tags, []).append(entry)
+    for groups in members.values():
+        ranked = sorted(
+            groups.values(),
+            key=lambda g: sum(e["type"] in _TYPE_KINDS for _, e in g) / len(g),
+        )
+        kept.extend(ranked[0])
+    return [err for _, err in sorted(kept, key=lambda entry: entry[0])]
+
+
 def _problem_from_error(model: type[BaseModel], case: CaseText, err: Any) -> Problem:
     loc: tuple[str | int, ...] = tuple(err["loc"])
-    # Drop pydantic's internal location parts (union member names, validator tags).
-    loc = tuple(p for p in loc if isinstance(p, int) or not p.startswith(("function-", "union")))
     kind = err["type"]
     value = err.get("input")
     ctx = err.get("ctx") or {}
