@@ -148,9 +148,9 @@ class RunOptions:
     color: bool
     width: int
     #: Cheap methods are repeated for this long to time them (``methods.timed``);
-    #: a batch takes 0.2 ms, not the 2 ms of a single run: coarser microsecond
+    #: a batch takes 50 µs, not the 2 ms of a single run: coarser microsecond
     #: figures, ten times the files per second.
-    timing_budget: float = 2e-4
+    timing_budget: float = 5e-5
 
 
 def _error_json(path: str, status: str, problems: list[dict[str, object]]) -> str:
