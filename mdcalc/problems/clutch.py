@@ -429,6 +429,38 @@ def _curves_table(curves: Curves, fr: Friction) -> Table:
     )
 
 
+# ------------------------------------------------------------------------- sweep
+
+#: Keys ``mdcalc sweep`` may vary in the vectorized form, and the quantity each sets.
+SWEEP_KEYS = {
+    "pairs.driving": "z1",
+    "pairs.driven": "z2",
+    "pairs.driving_friction": "f1",
+    "pairs.driven_friction": "f2",
+    "pairs.driving_ratio": "eta1",
+    "pairs.driven_ratio": "eta2",
+}
+
+
+def sweep(case: Case, grid: dict[str, Any]) -> dict[str, Any] | None:
+    """The key result C_max (26) over a grid of pair data at once (numpy); missing
+    (NaN) where η₂ = 1, as the report shows "unbounded" there. None for other keys."""
+    import numpy as np
+
+    if any(key not in SWEEP_KEYS for key in grid):
+        return None
+    fr = friction_of(case)
+    given = {SWEEP_KEYS[key]: np.asarray(values, dtype=float) for key, values in grid.items()}
+    z1, z2 = given.get("z1", fr.z1), given.get("z2", fr.z2)
+    f1, f2 = given.get("f1", fr.f1), given.get("f2", fr.f2)
+    eta1, eta2 = given.get("eta1", fr.eta1), given.get("eta2", fr.eta2)
+    static_sum = z1 * f1 + z2 * f2
+    sliding_sum = z1 * eta1 * f1 + z2 * eta2 * f2
+    with np.errstate(divide="ignore", invalid="ignore"):
+        bound = math.pi * static_sum / (4.0 * z2 * f2 * sliding_sum * (1.0 - eta2))
+    return {"c_max": np.where(np.asarray(eta2) < 1.0, bound, np.nan)}
+
+
 def template() -> dict[str, Any]:
     return {
         "problem": "clutch",

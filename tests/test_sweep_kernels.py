@@ -1,0 +1,88 @@
+"""Every vectorized sweep kernel agrees with the point-by-point path.
+
+Written once for all problems: a problem module that offers ``sweep(case, grid)``
+and ``SWEEP_KEYS`` is checked on each of its shipped cases, varying every key of
+``SWEEP_KEYS`` the case holds over a small grid around its value.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from mdcalc.problems import PROBLEMS
+from tests.conftest import CASES
+
+KERNELS = [name for name, spec in PROBLEMS.items() if hasattr(spec.load(), "SWEEP_KEYS")]
+
+
+def test_closed_form_problems_have_kernels():
+    # The two the issue's benchmark and the README name; a guard that can fail.
+    assert {"braking", "clutch"} <= set(KERNELS)
+
+
+def _held(data: dict, key: str):
+    node = data
+    for part in key.split("."):
+        if not isinstance(node, dict) or part not in node:
+            return None
+        node = node[part]
+    return node if isinstance(node, int | float) and not isinstance(node, bool) else None
+
+
+def _grid(data: dict, keys: dict[str, str], model) -> list[str]:
+    """Three values of every kernel key the case holds, within the field's bounds."""
+    from mdcalc.casefile import is_integer_field
+
+    varies = []
+    for key in keys:
+        value = _held(data, key)
+        if value is None or value == 0:
+            continue
+        loc = tuple(key.split("."))
+        if is_integer_field(model, loc):
+            low = value if value < 50 else value - 2  # bounds are small counts
+            varies.append(f"{key}={low}:{low + 2}:3")
+        else:  # below the value: the upper bounds (ratios <= 1) hold
+            varies.append(f"{key}={0.8 * value!r}:{float(value)!r}:3")
+    return varies
+
+
+CASE_FILES = [
+    (name, path)
+    for name in KERNELS
+    for path in sorted((CASES / name).glob("*.toml"))
+    + sorted((CASES / "extreme").glob(f"{name}_*.toml"))
+]
+
+
+@pytest.mark.parametrize(("name", "path"), CASE_FILES, ids=[f"{n}:{p.name}" for n, p in CASE_FILES])
+def test_kernel_equals_point_by_point(name: str, path: Path, monkeypatch):
+    import tomllib
+
+    from mdcalc.errors import InputError
+    from mdcalc.sweep import evaluate, parse_vary, plan
+
+    module = PROBLEMS[name].load()
+    data = tomllib.loads(path.read_text(encoding="utf-8"))
+    varies = _grid(data, module.SWEEP_KEYS, module.Case)[:3]  # 27 points at most
+    if not varies:
+        pytest.skip("the case holds no key the kernel varies")
+    try:
+        sweep = plan(path, [parse_vary(v) for v in varies])
+    except InputError as exc:  # a grid corner outside a cross-field rule
+        pytest.skip(f"grid not valid here: {exc}")
+    fast = evaluate(sweep, [], 1)
+    with monkeypatch.context() as patch:
+        patch.setattr(module, "sweep", lambda case, grid: None)
+        slow = evaluate(sweep, [], 1)
+    if not fast.vectorized:
+        pytest.skip("the scene needs the point-by-point path (an ODE)")
+    assert not slow.vectorized
+    for key in fast.keys:
+        np.testing.assert_allclose(
+            fast.columns[key], slow.columns[key], rtol=1e-11, atol=0, err_msg=key
+        )
+        assert list(np.isnan(fast.columns[key])) == list(np.isnan(slow.columns[key])), key
