@@ -207,15 +207,21 @@ def _split_loc(
     tags: list[str] = []
     where = -1
     current: Any = model
+    free_key = False  # the next part is a key of a dict[str, X] field
     for index, part in enumerate(loc):
         if isinstance(part, int):
             clean.append(part)
+            continue
+        if free_key:
+            clean.append(part)
+            free_key = False
             continue
         fields = getattr(current, "model_fields", None)
         last = index == len(loc) - 1
         if fields is not None and part in fields:
             clean.append(part)
             current = _inner_model(fields[part].annotation)
+            free_key = _is_dict(fields[part].annotation)
         elif fields is not None and last and kind == "extra_forbidden":
             clean.append(part)  # the unknown key itself
         elif fields is None and current is None and not _looks_like_tag(part):
@@ -227,6 +233,13 @@ def _split_loc(
             if _inner_model_named(current, part) is not None:
                 current = _inner_model_named(current, part)
     return tuple(clean), (where, tuple(tags))
+
+
+def _is_dict(annotation: Any) -> bool:
+    """Is the annotation ``dict[...]`` or ``dict[...] | None``?"""
+    if getattr(annotation, "__origin__", None) is dict:
+        return True
+    return any(_is_dict(a) for a in getattr(annotation, "__args__", ()) or () if a is not str)
 
 
 def _looks_like_tag(part: str) -> bool:

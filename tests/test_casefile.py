@@ -8,6 +8,7 @@ import pytest
 
 from mdcalc.casefile import _key_lines, write_toml_atomic
 from mdcalc.errors import InputError
+from tests.conftest import CASES
 
 
 def test_key_lines_follow_tables_and_arrays_of_tables():
@@ -39,3 +40,18 @@ def test_write_toml_atomic_never_overwrites(tmp_path: Path):
     write_toml_atomic(path, {"a": 2}, force=True)
     assert path.read_text() == "a = 2\n"
     assert [p.name for p in tmp_path.iterdir()] == ["x.toml"]  # no temporary left behind
+
+
+def test_a_bad_expectation_names_its_key_in_the_expect_table(write_case, cli):
+    # A dict[str, Model] key is part of the path, not a pydantic union tag.
+    text = (CASES / "braking" / "lecture.toml").read_text(encoding="utf-8")
+    bad = text.replace(
+        "lecture_time = { value = 2.54, abs = 0.005,", "lecture_time = { value = 2.54, abs = -1.0,"
+    )
+    assert bad != text
+    path = write_case(bad)
+    lines = bad.splitlines()
+    line = next(n for n, text in enumerate(lines, start=1) if text.startswith("lecture_time"))
+    result = cli("braking", path)
+    assert result.exit_code == 2
+    assert result.stderr.startswith(f"{path}:{line}: error: expect.lecture_time.abs: got -1.0")
