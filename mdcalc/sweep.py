@@ -70,6 +70,8 @@ def parse_vary(text: str) -> Vary:
         raise InputError(where, [Problem("N must be a whole number of points")]) from None
     if count < 1:
         raise InputError(where, [Problem(f"N = {count}; need at least one point")])
+    if count > MAX_POINTS:
+        raise InputError(where, [Problem(f"N = {count:,}; the limit is {MAX_POINTS:,} points")])
     return Vary(key, start, stop, count)
 
 
@@ -150,6 +152,9 @@ def plan(path: Path, varies: Sequence[Vary]) -> Plan:
     keys = [v.key for v in varies]
     if len(set(keys)) != len(keys):
         raise InputError(path, [Problem(f"a key is varied twice: {', '.join(keys)}")])
+    points = math.prod(v.count for v in varies)
+    if points > MAX_POINTS:  # before any value list is built
+        raise InputError(path, [Problem(f"{points:,} points; the limit is {MAX_POINTS:,}")])
     axes: list[list[float | int]] = []
     for vary in varies:
         base = _get_key(case.data, vary.loc)
@@ -170,8 +175,6 @@ def plan(path: Path, varies: Sequence[Vary]) -> Plan:
             values = list(rounded)
         axes.append(values)
     result = Plan(case, spec.name, list(varies), axes)
-    if result.points > MAX_POINTS:
-        raise InputError(path, [Problem(f"{result.points:,} points; the limit is {MAX_POINTS:,}")])
     corners = product(*[(a[0], a[-1]) for a in axes]) if len(axes) <= 12 else iter(())
     for corner in corners:
         try:

@@ -86,3 +86,13 @@ def test_kernel_equals_point_by_point(name: str, path: Path, monkeypatch):
             fast.columns[key], slow.columns[key], rtol=1e-11, atol=0, err_msg=key
         )
         assert list(np.isnan(fast.columns[key])) == list(np.isnan(slow.columns[key])), key
+
+
+def test_a_huge_grid_is_refused_before_it_is_built(cli):
+    # 10¹¹ points of one key, and 10⁴ × 10⁴ in two: exit 2 at once, not a hang.
+    lecture = CASES / "braking" / "lecture.toml"
+    one = cli("sweep", lecture, "--vary", "vehicle.mass=1:2:100000000000")
+    two = cli("sweep", lecture, "--vary", "vehicle.mass=1:2:10000", "--vary", "gravity=9:10:10000")
+    for result in (one, two):
+        assert result.exit_code == 2, result.stderr
+        assert "the limit is 10,000,000" in result.stderr
