@@ -45,14 +45,11 @@ class CheckOutcome:
 
 
 def collect(paths: Iterable[Path]) -> list[Path]:
-    """Files as given; folders searched recursively for ``*.toml``, in sorted order."""
-    files: list[Path] = []
-    for path in paths:
-        if path.is_dir():
-            files.extend(sorted(p for p in path.rglob("*.toml") if p.is_file()))
-        else:
-            files.append(path)
-    return files
+    """Files as given; folders searched recursively for ``*.toml``, in sorted order
+    (the file list of ``mdcalc run``)."""
+    from mdcalc.batch import collect as collect_cases
+
+    return [case.path for case in collect_cases(paths)]
 
 
 def within(expectation: Expectation, got: Value | None) -> bool:
