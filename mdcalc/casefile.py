@@ -11,6 +11,7 @@ import os
 import re
 import tempfile
 import tomllib
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, TypeVar
 
@@ -28,6 +29,16 @@ _KEY = re.compile(r"^\s*([A-Za-z0-9_\-\".' ]+?)\s*=")
 _UNIT = re.compile(r"\[([^\]]+)\]\s*$")
 
 
+@dataclass(frozen=True)
+class Conversion:
+    """A number written as a quantity string, and the value it became."""
+
+    loc: tuple[str | int, ...]
+    written: str
+    value: float
+    unit: str  # the field's unit, "" for a plain number
+
+
 class CaseText:
     """A case file's text and parsed data, with the line of each key."""
 
@@ -36,6 +47,8 @@ class CaseText:
         self.text = text
         self.data = data
         self._lines = _key_lines(text)
+        #: Quantity strings converted by the last :func:`validate` of this case.
+        self.conversions: list[Conversion] = []
 
     def line_of(self, loc: tuple[str | int, ...]) -> int | None:
         """Line of the key at ``loc``, or of its nearest enclosing table."""
@@ -83,13 +96,87 @@ def read_case(path: Path) -> CaseText:
 
 
 def validate(model: type[M], case: CaseText) -> M:
-    """Validate parsed data against ``model``; every problem is reported at once."""
+    """Validate parsed data against ``model``; every problem is reported at once.
+
+    Numbers written as quantity strings (``"52.5 N*m/deg"``) are converted to the
+    field's unit first (:mod:`mdcalc.quantities`); ``case.conversions`` lists them.
+    """
+    problems: list[Problem] = []
+    conversions: list[Conversion] = []
+    data = _with_quantities(model, case, case.data, (), conversions, problems)
+    case.conversions = conversions
     try:
-        return model.model_validate(case.data)
+        validated = model.model_validate(data)
     except ValidationError as exc:
+        failed = {p.path for p in problems}  # already told: not a number it could read
         errors = _one_union_member(model, exc.errors())
-        problems = [_problem_from_error(model, case, err) for err in errors]
+        found = [_problem_from_error(model, case, err) for err in errors]
+        problems += [p for p in found if p.path not in failed]
+    if problems:
         raise InputError(case.path, problems) from None
+    return validated
+
+
+def _with_quantities(
+    model: type[BaseModel],
+    case: CaseText,
+    value: Any,
+    loc: tuple[str | int, ...],
+    conversions: list[Conversion],
+    problems: list[Problem],
+) -> Any:
+    """``value`` with every quantity string under a numeric field replaced by its
+    number in the field's unit; strings elsewhere are left for pydantic to judge."""
+    if isinstance(value, dict):
+        return {
+            key: _with_quantities(model, case, item, (*loc, key), conversions, problems)
+            for key, item in value.items()
+        }
+    if isinstance(value, list):
+        return [
+            _with_quantities(model, case, item, (*loc, index), conversions, problems)
+            for index, item in enumerate(value)
+        ]
+    if not isinstance(value, str) or not loc:
+        return value
+    info = _walk(model, loc)[1]
+    if info is None or not _takes_numbers(info.annotation):
+        return value
+    from mdcalc.quantities import QuantityError, convert
+
+    unit = _unit(info)
+    try:
+        number = convert(value, unit if unit else "-")
+    except QuantityError as exc:
+        problems.append(Problem(str(exc), dotted(loc), case.line_of(loc)))
+        return value
+    if is_integer_field(model, loc):
+        if number != round(number):
+            problems.append(
+                Problem(f"got {value!r} = {number:g}; expected a whole number", dotted(loc),
+                        case.line_of(loc))
+            )  # fmt: skip
+            return value
+        number = int(round(number))
+    conversions.append(Conversion(loc, value, number, unit))
+    return number
+
+
+def _takes_numbers(annotation: Any) -> bool:
+    """Does the field take numbers (``float``, ``int | None``, ``list[float]`` ...) and
+    no strings?"""
+    leaves: set[Any] = set()
+
+    def collect(node: Any) -> None:
+        args = getattr(node, "__args__", None)
+        if args:
+            for arg in args:
+                collect(arg)
+        else:
+            leaves.add(node)
+
+    collect(annotation)
+    return bool(leaves & {float, int}) and str not in leaves
 
 
 def write_toml_atomic(path: Path, data: dict[str, Any], force: bool = False) -> None:
@@ -122,7 +209,7 @@ def write_text_atomic(path: Path, text: str) -> None:
 # ------------------------------------------------------------------ error messages
 
 
-def _dotted(loc: tuple[str | int, ...]) -> str:
+def dotted(loc: tuple[str | int, ...]) -> str:
     out = ""
     for part in loc:
         if isinstance(part, int):
@@ -293,7 +380,7 @@ def _problem_from_error(model: type[BaseModel], case: CaseText, err: Any) -> Pro
     holder, info = _walk(model, loc)
     unit = _unit(info)
     unit_text = f" {unit}" if unit else ""
-    path = _dotted(loc)
+    path = dotted(loc)
     line = case.line_of(loc)
 
     if kind == "extra_forbidden":

@@ -8,10 +8,10 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from mdcalc.casefile import CaseText, read_case, validate
+from mdcalc.casefile import CaseText, Conversion, dotted, read_case, validate
 from mdcalc.errors import InputError, Problem
 from mdcalc.problems import PROBLEMS, ProblemSpec
-from mdcalc.report import Report
+from mdcalc.report import Column, Report, Table
 
 
 def problem_of(case: CaseText) -> ProblemSpec:
@@ -65,4 +65,16 @@ def run_text(case: CaseText, expected_problem: str | None = None) -> Report:
     model = validate(module.Case, case)
     report = module.report(module.solve(model))
     report.case = str(path)
+    if case.conversions:
+        report.sections.insert(0, units_section(case.conversions))
     return report
+
+
+def units_section(conversions: list[Conversion]) -> Table:
+    """The numbers the case file wrote with units, as written and as computed with."""
+    return Table(
+        "Inputs written with units",
+        "units",
+        [Column("key"), Column("as written"), Column("value"), Column("unit")],
+        [[dotted(c.loc), c.written, c.value, c.unit or "-"] for c in conversions],
+    )

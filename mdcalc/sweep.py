@@ -158,7 +158,12 @@ def plan(path: Path, varies: Sequence[Vary]) -> Plan:
     axes: list[list[float | int]] = []
     for vary in varies:
         base = _get_key(case.data, vary.loc)
-        if isinstance(base, bool) or isinstance(base, str | dict | list):
+        quantity = any(c.loc == vary.loc for c in case.conversions)  # "52.5 N*m/deg"
+        if (
+            isinstance(base, bool)
+            or isinstance(base, dict | list)
+            or (isinstance(base, str) and not quantity)
+        ):
             raise InputError(
                 f"--vary {vary.key}", [Problem(f"{vary.key} is not a number in {path}")]
             )

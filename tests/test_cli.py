@@ -93,7 +93,8 @@ def test_negative_mass_gives_path_value_and_bound(cli, write_case):
         ("true", "got true; expected a number kg"),
         ("nan", "got nan; must be a finite number kg"),
         ("inf", "got inf; must be a finite number kg"),
-        ('"1500"', "got '1500'; expected a number kg"),
+        # A string is a quantity (issue 9); one without its unit is not taken as kg.
+        ('"1500"', "got '1500'; a number in quotes without a unit: write 1500 or '1500 kg'"),
     ],
 )
 def test_strict_numbers(cli, write_case, value, expected):

@@ -91,8 +91,9 @@ def test_variator_closed_form_parts_do_not_import_scipy(tmp_path):
 # ------------------------------------------------ every case file, every problem
 #
 # Written once for every registered problem: a scene may load scipy only when one of
-# its methods declares it (``Method.imports``); pint and matplotlib never (issue 9
-# brings them in behind explicit options). Two processes in all: the first learns
+# its methods declares it (``Method.imports``); pint only when the case writes a
+# number as a quantity string (its report then has a "units" section); matplotlib
+# never (only --plot loads it). Two processes in all: the first learns
 # what each case's methods declare, the second runs the undeclared ones through the
 # CLI, one after another, and names the first case after which a heavy module showed.
 
@@ -109,8 +110,9 @@ for name in sys.argv[1:]:
     except InputError:
         continue
     rows = [row for s in report.sections if isinstance(s, MethodsTable) for row in s.rows]
+    units = ["pint"] if any(getattr(s, "key", "") == "units" for s in report.sections) else []
     if rows:  # a scene without a Methods table (a stall, say) declares nothing: skipped
-        out[name] = sorted({m.split(".")[0] for row in rows for m in row.imports})
+        out[name] = sorted({m.split(".")[0] for row in rows for m in row.imports} | {*units})
 print(json.dumps(out))
 """
 
@@ -159,7 +161,8 @@ def test_no_case_loads_a_heavy_module_its_methods_do_not_declare():
     )
     assert done.returncode == 0, done.stderr
     declared = json.loads(done.stdout)
-    undeclared = [name for name, modules in declared.items() if "scipy" not in modules]
+    undeclared = [name for name, modules in declared.items() if not {"scipy", "pint"} & {*modules}]
+    assert any("pint" in modules for modules in declared.values()), "no case with units"
     # The guard can fail: some scenes do declare scipy, and the rest are many.
     assert len(undeclared) >= len(PROBLEMS) and len(undeclared) < len(declared)
     jobs = [f"{_problem_of(CASES.parent / n)}::{n}" for n in undeclared]
@@ -168,3 +171,11 @@ def test_no_case_loads_a_heavy_module_its_methods_do_not_declare():
     )
     assert done.returncode == 0, done.stderr
     assert done.stdout.startswith("CLEAN"), done.stdout
+
+
+def test_quantity_strings_load_pint_and_plain_numbers_do_not():
+    # The same scene both ways: pint is paid for only where a unit string is written.
+    plain = heavy_modules("coupling", str(CASES / "coupling" / "example_8_1.toml"))
+    units = heavy_modules("coupling", str(CASES / "coupling" / "example_8_1_units.toml"))
+    assert "pint" not in plain
+    assert "pint" in units

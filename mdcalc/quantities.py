@@ -1,0 +1,169 @@
+"""Quantity strings in case files: ``"52.5 N*m/deg"``, ``"1000 rpm"``, ``"479.15 t*m**2"``.
+
+A numeric key may be written as a string with a unit; it is parsed with pint,
+checked against the unit in the field's description and converted to it. pint is
+imported only when a case file holds such a string (it costs about 0.3 s), and its
+registry is built once per process.
+
+pint's stock registry has traps for a machine-dynamics engineer, each handled here
+and tested in ``tests/test_quantities.py``:
+
+* **The radian is dimensionless** in pint, so ``"52.5 N*m"`` would pass for a
+  stiffness in N·m/rad and ``"50 Hz"`` would become 50 rad/s. Here the angle is a
+  base dimension of its own: ``N*m`` is refused where N·m/rad is asked, ``N*m/deg``
+  converts with 180/π, ``rpm`` is a revolution per minute (2π/60 rad/s) and ``Hz``
+  is a cycle per second (50 Hz = 100π rad/s = 3000 rpm).
+* ``Nm`` is pint's textile *number metre* (km/kg); here it is the newton metre
+  (and ``kNm`` the kilonewton metre).
+* ``PS`` is pint's petasiemens; here it is the metric horsepower, 75 kgf·m/s =
+  735.49875 W.
+* ``ton`` is pint's short ton (907.18 kg) where a Russian or European document
+  means the tonne; it is refused as ambiguous: write ``t`` (tonne) or ``short_ton``.
+
+pint parses with its own tokenizer and evaluator (no Python ``eval``). Powers are
+limited to small exponents, so ``"10**10**10 m"`` is refused instead of computed.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from functools import cache
+from typing import Any
+
+#: Unit names refused outright, with what to write instead.
+AMBIGUOUS = {
+    "ton": "'ton' is ambiguous (pint reads the US short ton, 907.18 kg); "
+    "write 't' or 'tonne' for 1000 kg, or 'short_ton'",
+    "tons": "'tons' is ambiguous; write 't' or 'tonne' for 1000 kg, or 'short_ton'",
+}
+
+#: Redefinitions and additions to pint's English registry (see the module docstring).
+_REPLACED = {
+    "radian = [] = rad": "radian = [angle] = rad",
+    "hertz = 1 / second = Hz": "hertz = revolution / second = Hz",
+}
+_ADDED = (
+    "Nm = newton * meter",
+    "PS = 75 * force_kilogram * meter / second",
+)
+
+_NAME = re.compile(r"[^\W\d]\w*")
+_POWER_OP = re.compile(r"\*\*|\^")
+#: A power with a plain exponent, not itself raised to a power (10**10**10 is refused).
+_PLAIN_POWER = re.compile(r"(?:\*\*|\^)\s*([-+]?(?:\d+(?:\.\d*)?|\.\d+))(?![\w.(]|\s*(?:\*\*|\^))")
+_MAX_EXPONENT = 4.0
+_MAX_LENGTH = 100
+
+
+class QuantityError(ValueError):
+    """A quantity string that cannot be read or does not fit its field."""
+
+
+@cache
+def registry() -> Any:
+    """pint's English registry with the changes above; built once per process."""
+    import os
+
+    import pint
+
+    folder = os.path.dirname(pint.__file__)
+    lines: list[str] = []
+    with open(os.path.join(folder, "default_en.txt"), encoding="utf-8") as handle:
+        for line in handle.read().splitlines():
+            if line.strip() == "@import constants_en.txt":
+                with open(os.path.join(folder, "constants_en.txt"), encoding="utf-8") as inner:
+                    lines += inner.read().splitlines()
+            else:
+                lines.append(_REPLACED.get(line.strip(), line))
+    missing = [old for old, new in _REPLACED.items() if new not in lines]
+    if missing:  # a pint release that words these lines differently
+        raise RuntimeError(f"pint's definitions changed; cannot redefine: {missing}")
+    ureg: Any = pint.UnitRegistry(None, on_redefinition="ignore")
+    ureg.load_definitions(lines)
+    for definition in _ADDED:
+        ureg.define(definition)
+    return ureg
+
+
+def field_unit(unit: str) -> str:
+    """A field description's unit (``N·m/rad``, ``kg·m^2``, ``-``) in pint's syntax."""
+    if unit in ("", "-"):
+        return "dimensionless"
+    return unit.replace("·", "*").replace("^", "**")
+
+
+def convert(text: str, unit: str) -> float:
+    """The value of quantity ``text`` in ``unit`` (a field description's unit).
+
+    Raises :class:`QuantityError` with a message for the user.
+    """
+    _screen(text)
+    ureg = registry()
+    import pint
+
+    target_text = field_unit(unit)
+    try:
+        target = ureg.Unit(target_text)
+    except Exception:  # "N·m/rad^n", "unit of value": no fixed unit to convert to
+        raise QuantityError(f"got {text!r}; this key takes a plain number in {unit}") from None
+    try:
+        quantity = ureg.Quantity(text)
+    except pint.errors.UndefinedUnitError as exc:
+        names = ", ".join(repr(n) for n in exc.unit_names) if exc.unit_names else "a name"
+        raise QuantityError(f"got {text!r}; unknown unit {names}") from None
+    except Exception:  # pint's parser raises assorted errors on malformed text
+        raise QuantityError(
+            f'got {text!r}; not a quantity (write a number and a unit, as "52.5 N*m/deg")'
+        ) from None
+    if not isinstance(quantity, ureg.Quantity):  # a bare number may parse to int
+        quantity = ureg.Quantity(quantity, "dimensionless")
+    if quantity.unitless and not target.dimensionless:
+        raise QuantityError(
+            f"got {text!r}; a number in quotes without a unit: "
+            f"write {text.strip()} or '{text.strip()} {unit}'"
+        )
+    try:
+        value = quantity.to(target).magnitude
+    except pint.errors.DimensionalityError:
+        raise QuantityError(_mismatch(text, quantity, target, unit)) from None
+    value = float(value.real if isinstance(value, complex) else value)
+    if not math.isfinite(value):
+        raise QuantityError(f"got {text!r}; {value} {unit} is not a finite number")
+    return value
+
+
+def _screen(text: str) -> None:
+    """Refuse what pint would take wrongly or take long over, before it sees it."""
+    if len(text) > _MAX_LENGTH:
+        raise QuantityError(f"a quantity string of {len(text)} characters; at most {_MAX_LENGTH}")
+    for name in _NAME.findall(text):
+        if name in AMBIGUOUS:
+            raise QuantityError(f"got {text!r}; {AMBIGUOUS[name]}")
+    powers = _POWER_OP.findall(text)
+    plain = [float(m) for m in _PLAIN_POWER.findall(text)]
+    if len(plain) != len(powers) or any(abs(e) > _MAX_EXPONENT for e in plain):
+        raise QuantityError(
+            f"got {text!r}; a power must be a plain number up to {_MAX_EXPONENT:g}, "
+            "not another power or a bracket (as m**2, s**-1)"
+        )
+
+
+def _mismatch(text: str, quantity: Any, target: Any, unit: str) -> str:
+    given, wanted = quantity.dimensionality, target.dimensionality
+    g, w = given.get("[angle]", 0), wanted.get("[angle]", 0)
+    rest = {k: v for k, v in given.items() if k != "[angle]"}
+    hint = ""
+    if g != w and rest == {k: v for k, v in wanted.items() if k != "[angle]"}:
+        if w < g:
+            hint = f"{unit} is per angle: write the value per rad or per deg"
+        elif g < w:
+            hint = f"{unit} holds an angle: write rad, deg, rpm or Hz"
+        hint = f"; {hint} (pint takes radians as plain numbers, mdcalc does not)"
+        if w == 0:
+            hint = f"; the value holds an angle and {_named(unit)} does not"
+    return f"got {text!r}; does not convert to {_named(unit)}{hint}"
+
+
+def _named(unit: str) -> str:
+    return "a plain number" if unit in ("", "-") else unit
