@@ -77,16 +77,37 @@ def _guard(body: Callable[[], int], debug: bool) -> int:
         return EXIT_BUG
 
 
-def run_problem(spec: ProblemSpec, case: Path, as_json: bool, debug: bool) -> int:
+def run_problem(
+    spec: ProblemSpec,
+    case: Path,
+    as_json: bool,
+    debug: bool,
+    plot: Path | None = None,
+    save: Path | None = None,
+    force: bool = False,
+) -> int:
     def body() -> int:
         from mdcalc.report import render_rich, to_json
-        from mdcalc.runner import run_case
 
-        report = run_case(case, expected_problem=spec.name)
+        _check_outputs(case, plot, save, force)
+        from mdcalc.casefile import read_case
+        from mdcalc.runner import solve_text
+
+        run = solve_text(read_case(case), expected_problem=spec.name)
+        report = run.report
+        charts = _charts(run, plot) if plot is not None else []
         if as_json:
             print(to_json(report))
         else:
             render_rich(report, _console())
+        if plot is not None and charts:
+            from mdcalc.plot import render
+
+            render(charts, plot, title=report.title)
+            _stderr(f"wrote {plot}")
+        if save is not None:
+            _save(run, save, force)
+            _stderr(f"wrote {save}")
         if report.status != "ok":
             _stderr(f"{case}: error: no answer: {report.message}")
             return EXIT_NO_ANSWER
@@ -95,15 +116,82 @@ def run_problem(spec: ProblemSpec, case: Path, as_json: bool, debug: bool) -> in
     return _guard(body, debug)
 
 
+def _check_outputs(case: Path, plot: Path | None, save: Path | None, force: bool) -> None:
+    """Refuse --plot and --save paths before anything is computed."""
+    problems: list[tuple[Path, str]] = []
+    for option, path, suffixes in (("--plot", plot, None), ("--save", save, (".toml",))):
+        if path is None:
+            continue
+        if suffixes is None:
+            from mdcalc.plot import FORMATS, matplotlib_missing
+
+            if path.suffix.lower() not in FORMATS:
+                problems.append((path, f"{option}: use a file ending {', '.join(FORMATS)}"))
+            elif (missing := matplotlib_missing()) is not None:
+                problems.append((path, missing))
+        elif path.suffix.lower() not in suffixes:
+            problems.append((path, f"{option}: use a file ending .toml"))
+        if path.exists() and not force:
+            problems.append((path, f"{option}: the file exists; use --force to overwrite it"))
+        elif path.resolve() == case.resolve():
+            problems.append((path, f"{option}: would overwrite the case file itself"))
+    if problems:  # the first file's problems (an error names one file)
+        first = problems[0][0]
+        raise InputError(first, [Problem(m) for path, m in problems if path == first])
+
+
+def _charts(run: Any, plot: Path) -> list[Any]:
+    make = getattr(run.module, "charts", None)
+    charts = make(run.result) if make is not None else []
+    if not charts:
+        why = "this problem draws no plot" if make is None else "this scene has no curve to draw"
+        _stderr(f"{plot}: warning: --plot: {why}; no file written")
+    return list(charts)
+
+
+def _save(run: Any, path: Path, force: bool) -> None:
+    """The case as read, with the results in a [saved] table (tomli-w, atomic)."""
+    from mdcalc.casefile import write_toml_atomic
+    from mdcalc.report import saved_table
+
+    data = {k: v for k, v in run.case.data.items() if k != "saved"}
+    data["saved"] = {**saved_table(run.report), "case": str(run.case.path)}
+    write_toml_atomic(path, data, force=force)
+
+
+PlotOption = Annotated[
+    Path | None,
+    typer.Option(
+        "--plot",
+        help="Draw the scene's curves into FILE.png, .svg or .pdf (needs mdcalc[plot]).",
+        metavar="FILE",
+    ),
+]
+SaveOption = Annotated[
+    Path | None,
+    typer.Option(
+        "--save",
+        help="Write the case with its results (a [saved] table) to FILE.toml.",
+        metavar="FILE.toml",
+    ),
+]
+ForceOption = Annotated[
+    bool, typer.Option("--force", help="Let --plot and --save overwrite a file.")
+]
+
+
 def _make_problem_command(spec: ProblemSpec) -> Callable[..., None]:
     def command(
         case: Annotated[
             Path, typer.Argument(help="Case file (TOML).", show_default=False, metavar="CASE.toml")
         ],
         as_json: JsonOption = False,
+        plot: PlotOption = None,
+        save: SaveOption = None,
+        force: ForceOption = False,
         debug: DebugOption = False,
     ) -> None:
-        raise typer.Exit(run_problem(spec, case, as_json, debug))
+        raise typer.Exit(run_problem(spec, case, as_json, debug, plot, save, force))
 
     command.__doc__ = spec.summary
     return command

@@ -245,6 +245,43 @@ def to_json(report: Report, indent: int | None = 2) -> str:
     )
 
 
+def saved_table(report: Report) -> dict[str, Any]:
+    """The report's results and Methods tables as a TOML table (``--save``): values
+    under ``results``, their units under ``units``, one table per Methods row with
+    ``<key>`` and ``<key>_rel_error``; empty values left out (TOML has no null)."""
+    quantities = [q for key, q in report.results().items() if key != "status"]
+    table: dict[str, Any] = {"mdcalc": __version__, "status": report.status}
+    if report.message:
+        table["message"] = report.message
+    table["results"] = {q.key: q.value for q in quantities}
+    table["units"] = {q.key: q.unit for q in quantities if q.unit}
+    methods = {
+        s.key: [_saved_row(row) for row in s.rows]
+        for s in report.sections
+        if isinstance(s, MethodsTable)
+    }
+    if methods:
+        table["methods"] = methods
+    return table
+
+
+def _saved_row(row: MethodRow) -> dict[str, Any]:
+    out: dict[str, Any] = {"method": row.method}
+    if row.reference:
+        out["reference"] = True
+    for key, value in row.values.items():
+        if value is not None:
+            out[key] = value
+        error = row.rel_errors.get(key)
+        if error is not None:
+            out[f"{key}_rel_error"] = error
+    if row.seconds is not None:
+        out["seconds"] = row.seconds
+    if row.note:
+        out["note"] = row.note
+    return out
+
+
 # ----------------------------------------------------------------------------- rich
 
 

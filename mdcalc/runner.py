@@ -6,7 +6,9 @@ Shared by the problem commands and ``mdcalc check``; raises
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 from mdcalc.casefile import CaseText, Conversion, dotted, read_case, validate
 from mdcalc.errors import InputError, Problem
@@ -41,12 +43,27 @@ def problem_of(case: CaseText) -> ProblemSpec:
     return PROBLEMS[name]
 
 
+@dataclass
+class Run:
+    """A case run: its report, the solver's result (for plots) and the inputs."""
+
+    report: Report
+    result: Any
+    module: Any
+    case: CaseText
+
+
 def run_case(path: Path, expected_problem: str | None = None) -> Report:
     return run_text(read_case(path), expected_problem)
 
 
 def run_text(case: CaseText, expected_problem: str | None = None) -> Report:
     """Validate, solve and report a case file already read."""
+    return solve_text(case, expected_problem).report
+
+
+def solve_text(case: CaseText, expected_problem: str | None = None) -> Run:
+    """Validate, solve and report a case file already read, keeping the result."""
     path = case.path
     spec = problem_of(case)
     if expected_problem is not None and spec.name != expected_problem:
@@ -63,11 +80,12 @@ def run_text(case: CaseText, expected_problem: str | None = None) -> Report:
         )
     module = spec.load()
     model = validate(module.Case, case)
-    report = module.report(module.solve(model))
+    result = module.solve(model)
+    report = module.report(result)
     report.case = str(path)
     if case.conversions:
         report.sections.insert(0, units_section(case.conversions))
-    return report
+    return Run(report, result, module, case)
 
 
 def units_section(conversions: list[Conversion]) -> Table:

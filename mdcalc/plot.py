@@ -1,0 +1,150 @@
+"""Plots of a problem's curves (``--plot FILE.png|.svg|.pdf``).
+
+A problem module that has curves offers ``charts(result) -> list[Chart]``: plain
+data (this module's dataclasses, no matplotlib). :func:`render` draws the charts one
+under another with matplotlib's Agg backend; matplotlib is imported only here, and
+only when ``--plot`` is given. It is an optional extra: ``pip install 'mdcalc[plot]'``.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Literal
+
+from mdcalc.errors import InputError, Problem
+
+FORMATS = (".png", ".svg", ".pdf")
+
+Style = Literal["line", "dashed", "dotted", "points", "step"]
+
+
+@dataclass(frozen=True)
+class Series:
+    """One curve (or point set) of a chart."""
+
+    label: str
+    x: Sequence[float]
+    y: Sequence[float]
+    style: Style = "line"
+
+
+@dataclass(frozen=True)
+class Mark:
+    """A horizontal (``axis="y"``) or vertical (``axis="x"``) reference line."""
+
+    axis: Literal["x", "y"]
+    value: float
+    label: str = ""
+
+
+@dataclass(frozen=True)
+class Shade:
+    """A map over a grid, drawn as filled regions: ``z[i][j]`` at ``(x[j], y[i])``.
+    With ``levels`` given, the regions between those levels (a stability chart)."""
+
+    x: Sequence[float]
+    y: Sequence[float]
+    z: Sequence[Sequence[float]]
+    label: str = ""
+    levels: Sequence[float] | None = None
+
+
+@dataclass(frozen=True)
+class Chart:
+    title: str
+    x_label: str
+    y_label: str
+    series: list[Series] = field(default_factory=list)
+    marks: list[Mark] = field(default_factory=list)
+    shade: Shade | None = None
+    x_log: bool = False
+    y_log: bool = False
+
+
+def check_path(path: Path) -> None:
+    """Refuse a plot path matplotlib cannot write, before anything is computed."""
+    if path.suffix.lower() not in FORMATS:
+        raise InputError(
+            path,
+            [Problem(f"--plot: unknown image format {path.suffix or '(none)'!r}; "
+                     f"use {', '.join(FORMATS)}")],
+        )  # fmt: skip
+
+
+def matplotlib_missing() -> str | None:
+    """None if matplotlib can be imported, else what to do about it."""
+    import importlib.util
+
+    if importlib.util.find_spec("matplotlib") is None:
+        return (
+            "--plot needs matplotlib, which is not installed; "
+            "install it with: pip install 'mdcalc[plot]'"
+        )
+    return None
+
+
+def render(charts: Sequence[Chart], path: Path, title: str = "") -> None:
+    """Draw ``charts`` one under another into ``path`` (its suffix is the format),
+    atomically: a temporary file in the same folder, then a rename."""
+    import os
+    import tempfile
+
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from matplotlib.figure import Figure
+
+    figure = Figure(figsize=(7.5, 3.4 * len(charts) + (0.4 if title else 0.0)), layout="tight")
+    axes = figure.subplots(len(charts), 1, squeeze=False)[:, 0]
+    for ax, chart in zip(axes, charts, strict=True):
+        _draw(ax, chart)
+    if title:
+        figure.suptitle(title, fontsize=11)
+    directory = path.parent if str(path.parent) else Path(".")
+    directory.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=path.suffix, dir=directory)
+    os.close(fd)
+    try:
+        figure.savefig(tmp, format=path.suffix.lower().lstrip("."), dpi=120)
+        os.replace(tmp, path)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+
+
+_STYLES = {"line": "-", "dashed": "--", "dotted": ":"}
+
+
+def _draw(ax: object, chart: Chart) -> None:
+    from typing import Any
+
+    a: Any = ax
+    if chart.shade is not None:
+        s = chart.shade
+        if s.levels is not None:
+            filled = a.contourf(s.x, s.y, s.z, levels=list(s.levels), cmap="Greys", alpha=0.5)
+        else:
+            filled = a.pcolormesh(s.x, s.y, s.z, shading="auto", cmap="viridis")
+            a.figure.colorbar(filled, ax=a, label=s.label)
+    for series in chart.series:
+        if series.style == "points":
+            a.plot(series.x, series.y, "o", markersize=3, label=series.label)
+        elif series.style == "step":
+            a.step(series.x, series.y, where="post", label=series.label)
+        else:
+            a.plot(series.x, series.y, _STYLES[series.style], label=series.label)
+    for mark in chart.marks:
+        line = a.axhline if mark.axis == "y" else a.axvline
+        line(mark.value, color="grey", linestyle=":", linewidth=1, label=mark.label or None)
+    if chart.x_log:
+        a.set_xscale("log")
+    if chart.y_log:
+        a.set_yscale("log")
+    a.set_title(chart.title, fontsize=10)
+    a.set_xlabel(chart.x_label)
+    a.set_ylabel(chart.y_label)
+    a.grid(True, alpha=0.3)
+    if any(s.label for s in chart.series) or any(m.label for m in chart.marks):
+        a.legend(fontsize=8)
