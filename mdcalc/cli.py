@@ -26,7 +26,7 @@ app = typer.Typer(
     help="Machine-dynamics calculator: mdcalc PROBLEM CASE.toml [--json]. "
     "`mdcalc new PROBLEM` writes a starter case.",
     no_args_is_help=True,
-    add_completion=False,
+    add_completion=True,
     pretty_exceptions_enable=False,
     # Plain click help: typer's rich help imports rich and markdown-it (~100 ms).
     rich_markup_mode=None,
@@ -35,6 +35,33 @@ app = typer.Typer(
 
 JsonOption = Annotated[bool, typer.Option("--json", help="Write the results as JSON.")]
 DebugOption = Annotated[bool, typer.Option("--debug", help="Show the traceback of a bug.")]
+
+
+def complete_case(incomplete: str) -> list[str]:
+    """Shell completion of a case argument: folders and *.toml files."""
+    import os
+
+    folder, _, stem = incomplete.rpartition("/")
+    base = folder + "/" if folder else ""
+    try:
+        names = sorted(os.listdir(folder or "."))
+    except OSError:
+        return []
+    out = []
+    for name in names:
+        if not name.startswith(stem) or (name.startswith(".") and not stem.startswith(".")):
+            continue
+        if os.path.isdir(os.path.join(folder or ".", name)):
+            out.append(f"{base}{name}/")
+        elif name.endswith(".toml"):
+            out.append(f"{base}{name}")
+    # Folders alone: nothing, so the shell completes them itself (bash would put a
+    # space after a lone "cases/").
+    return out if any(name.endswith(".toml") for name in out) else []
+
+
+def complete_problem(incomplete: str) -> list[str]:
+    return [name for name in PROBLEMS if name.startswith(incomplete)]
 
 
 def _stderr(line: str) -> None:
@@ -183,7 +210,13 @@ ForceOption = Annotated[
 def _make_problem_command(spec: ProblemSpec) -> Callable[..., None]:
     def command(
         case: Annotated[
-            Path, typer.Argument(help="Case file (TOML).", show_default=False, metavar="CASE.toml")
+            Path,
+            typer.Argument(
+                help="Case file (TOML).",
+                show_default=False,
+                metavar="CASE.toml",
+                autocompletion=complete_case,
+            ),
         ],
         as_json: JsonOption = False,
         plot: PlotOption = None,
@@ -219,7 +252,9 @@ def _color() -> bool:
 
 @app.command("check")
 def check_command(
-    paths: Annotated[list[Path], typer.Argument(help="Case files or folders.")],
+    paths: Annotated[
+        list[Path], typer.Argument(help="Case files or folders.", autocompletion=complete_case)
+    ],
     jobs: JobsOption = 1,
     debug: DebugOption = False,
 ) -> None:
@@ -258,7 +293,10 @@ def check_command(
 @app.command("run")
 def run_command(
     paths: Annotated[
-        list[Path], typer.Argument(help="Case files or folders (searched for *.toml).")
+        list[Path],
+        typer.Argument(
+            help="Case files or folders (searched for *.toml).", autocompletion=complete_case
+        ),
     ],
     jobs: JobsOption = 0,
     out: Annotated[
@@ -354,7 +392,13 @@ def _print_run_summary(
 @app.command("sweep")
 def sweep_command(
     case: Annotated[
-        Path, typer.Argument(help="Case file (TOML).", show_default=False, metavar="CASE.toml")
+        Path,
+        typer.Argument(
+            help="Case file (TOML).",
+            show_default=False,
+            metavar="CASE.toml",
+            autocompletion=complete_case,
+        ),
     ],
     vary: Annotated[
         list[str],
@@ -459,7 +503,9 @@ def _print_sweep(table: Any, points: int, how: str) -> None:
 
 @app.command("new")
 def new_command(
-    problem: Annotated[str, typer.Argument(help=f"One of: {', '.join(PROBLEMS)}.")],
+    problem: Annotated[
+        str, typer.Argument(help=f"One of: {', '.join(PROBLEMS)}.", autocompletion=complete_problem)
+    ],
     output: Annotated[
         Path | None, typer.Option("-o", "--output", help="Write to this file, not stdout.")
     ] = None,
