@@ -481,7 +481,9 @@ def _print_sweep(table: Any, points: int, how: str) -> None:
     from mdcalc.sweep import summary_rows
 
     console = _console()
-    if points <= 200:
+    # A table of points while it fits: at most 200 rows and 8 columns (a scene with
+    # many Methods tables has dozens of key results; then each column's range).
+    if points <= 200 and len(table.keys) <= 8:
         rich_table = Table(title=f"Sweep: {points} points, {how}", title_justify="left")
         for key in table.keys:
             unit = table.units.get(key, "")
@@ -498,7 +500,10 @@ def _print_sweep(table: Any, points: int, how: str) -> None:
     for row in summary_rows(table):
         rich_table.add_row(*row)
     console.print(rich_table)
-    console.print("write every point with --out FILE.csv or FILE.json", style="dim")
+    console.print(
+        "write every point with --out FILE.csv or FILE.json; pick columns with --result KEY",
+        style="dim",
+    )
 
 
 @app.command("new")
