@@ -135,9 +135,13 @@ def _draw(ax: object, chart: Chart) -> None:
             a.step(series.x, series.y, where="post", label=series.label)
         else:
             a.plot(series.x, series.y, _STYLES[series.style], label=series.label)
+    labelled: set[str] = set()  # one legend entry per label (upshift, upshift, ...)
     for mark in chart.marks:
         line = a.axhline if mark.axis == "y" else a.axvline
-        line(mark.value, color="grey", linestyle=":", linewidth=1, label=mark.label or None)
+        look = ("-.", "firebrick") if mark.axis == "y" else (":", "dimgrey")
+        label = mark.label if mark.label and mark.label not in labelled else None
+        labelled.add(mark.label)
+        line(mark.value, linestyle=look[0], color=look[1], linewidth=1, alpha=0.8, label=label)
     if chart.x_log:
         a.set_xscale("log")
     if chart.y_log:

@@ -491,8 +491,22 @@ def some_number(data: st.DataObject, seed: dict[str, Any], here: Node) -> tuple[
     return data.draw(st.sampled_from(leaves), label="number")
 
 
+def _not_a_quantity(text: str) -> bool:
+    """A string pint cannot read: "3", "m" or "pi" are quantities now (issue 9)."""
+    from mdcalc.quantities import QuantityError, convert
+
+    for unit in ("-", "m", "N·m/rad", "rpm"):
+        try:
+            convert(text, unit)
+            return False
+        except QuantityError as exc:
+            if "does not convert" in str(exc) or "without a unit" in str(exc):
+                return False  # read, but of another dimension: could fit some key
+    return True
+
+
 WRONG_TYPES = st.one_of(
-    st.text(max_size=8),
+    st.text(max_size=8).filter(_not_a_quantity),
     st.booleans(),
     st.dictionaries(st.from_regex(r"[a-z]{1,6}", fullmatch=True), st.integers(), max_size=2),
     st.lists(st.floats(-10, 10), max_size=3),

@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Any, Literal
+from typing import TYPE_CHECKING, Any, Literal
 
 from pydantic import Field, model_validator
 
@@ -40,6 +40,9 @@ from mdcalc.report import (
     Table,
     Value,
 )
+
+if TYPE_CHECKING:
+    from mdcalc.plot import Chart, Style
 
 UNBOUNDED = "unbounded"
 
@@ -427,6 +430,102 @@ def _curves_table(curves: Curves, fr: Friction) -> Table:
         columns,
         rows,
     )
+
+
+# ------------------------------------------------------------------------- charts
+
+#: Points of each C_max(η) curve of the chart (the report's table has ``curves.points``).
+CHART_POINTS = 200
+
+
+def charts(result: Result) -> list[Chart]:
+    """``--plot``: the curves C_max(η) of the report's table at ``CHART_POINTS``
+    points, over its η range (without ``[curves]``, the default range widened to
+    take in the case's η₁ and η₂). The case's own η₁, η₂ are marked when in range,
+    with its bound C_max where it lies on a curve, and its gain C unless that would
+    flatten the curves. η₂ = 1 has no finite bound: those points are left out.
+    Closed forms only, no numpy."""
+    from mdcalc.plot import Chart, Mark, Series
+
+    case, fr = result.case, result.friction
+    curves = case.curves or Curves()
+    low, high = curves.eta_from, curves.eta_to
+    if case.curves is None:  # show the case's own point on the curves
+        low = min(low, fr.eta1, fr.eta2)
+        high = max([high] + [e for e in (fr.eta1, fr.eta2) if e < 1.0])
+    etas = [low + (high - low) * k / (CHART_POINTS - 1) for k in range(CHART_POINTS)]
+    driven = curves.driven_ratios if curves.driven_ratios is not None else [fr.eta2]
+    driving = curves.driving_ratios if curves.driving_ratios is not None else [fr.eta1]
+    # (label, style, η₁, η₂); None: the η of the axis.
+    wanted: list[tuple[str, Style, float | None, float | None]] = [
+        *((f"η₁ = η, η₂ = {_eta_text(e)}", "line", None, e) for e in driven),
+        *((f"η₂ = η, η₁ = {_eta_text(e)}", "dashed", e, None) for e in driving),
+        ("η₁ = η₂ = η (27)", "dotted", None, None),
+    ]
+    series: list[Series] = []
+    for label, style, eta1, eta2 in wanted:
+        points = [
+            (
+                eta,
+                gain_bound(
+                    fr.with_ratios(eta if eta1 is None else eta1, eta if eta2 is None else eta2)
+                ),
+            )
+            for eta in etas
+        ]
+        points = [(eta, c) for eta, c in points if math.isfinite(c)]  # η₂ = 1: unbounded
+        if points:
+            series.append(Series(label, [p[0] for p in points], [p[1] for p in points], style))
+    if not series:
+        return []
+    inside = [e for e in dict.fromkeys((fr.eta2, fr.eta1)) if low <= e <= high]
+    # The case's bound lies on the curve η₂ = η, η₁ = the case's at η₂, and on the
+    # curve η₁ = η, η₂ = the case's at η₁.
+    on_curves = [e for e in inside if (e == fr.eta2 and fr.eta1 in driving)]
+    on_curves += [e for e in inside if (e == fr.eta1 and fr.eta2 in driven)]
+    on_curves = list(dict.fromkeys(on_curves))
+    if math.isfinite(result.bound) and on_curves:
+        series.append(
+            Series(
+                f"this case: C_max = {result.bound:.4g}",
+                on_curves,
+                [result.bound] * len(on_curves),
+                "points",
+            )
+        )
+    marks: list[Mark] = []
+    for e in inside:
+        name = "η₁ = η₂" if fr.eta1 == fr.eta2 else ("η₂" if e == fr.eta2 else "η₁")
+        marks.append(Mark("x", e, f"{name} = {_eta_text(e)} (this case)"))
+    values = [c for s in series for c in s.y]
+    top, bottom = max(values), min(values)
+    y_log = bottom > 0.0 and top / bottom > 50.0
+    if case.clutch is not None:
+        gain = case.clutch.feedback
+        if (gain > 0.0 or not y_log) and gain <= 1.5 * top:  # else it would flatten the curves
+            marks.append(Mark("y", gain, f"gain C = {gain:.4g} (this clutch)"))
+    unbounded = "; this case: η₂ = 1, stable at every gain" if math.isinf(result.bound) else ""
+    return [
+        Chart(
+            f"Gain bound (26) C_max(η), stable below: z₁ = {fr.z1}, z₂ = {fr.z2}, "
+            f"f₁ = {fr.f1:g}, f₂ = {fr.f2:g}{unbounded}",
+            "η = sliding/static friction [-]",
+            "C_max [-]",
+            series,
+            marks,
+            y_log=y_log,
+        )
+    ]
+
+
+def _eta_text(eta: float) -> str:
+    """η with the digits that tell it from 1 (and from its neighbours): 0.8, or
+    0.9999999991 where :g would print 1."""
+    for digits in range(4, 18):
+        text = f"{eta:.{digits}g}"
+        if abs(float(text) - eta) <= 1e-3 * min(eta, 1.0 - eta) or float(text) == eta:
+            return text
+    return repr(eta)
 
 
 # ------------------------------------------------------------------------- sweep
