@@ -8,7 +8,8 @@ c given or from the static deflection, c = G/f (7.50), so β = √(c/M) = √(g/
 (7.74) prints 2·β for the second). The peak displacement is the largest |x| of the
 two-harmonic sum over a revolution, found exactly (its extrema are the roots of a
 trigonometric polynomial); the lecture's estimate m·r/M is its high-speed limit
-without the second harmonic. All closed forms: no numpy, no scipy.
+without the second harmonic. All closed forms: no numpy, no scipy (but for the
+vectorized sweep kernel at the end, which imports numpy when it runs).
 """
 
 from __future__ import annotations
@@ -29,6 +30,8 @@ from mdcalc.report import MethodQuantity, MethodsTable, Note, Quantities, Quanti
 RAD_S_TO_RPM = 30.0 / math.pi
 #: The lecture's rule (after (7.78)): a load is quasi-static while μ ≤ 1.05.
 QUASI_STATIC_FACTOR = 1.05
+#: ... that is while ω/β ≤ √(1 - 1/1.05).
+QUASI_STATIC_RATIO = math.sqrt(1.0 - 1.0 / QUASI_STATIC_FACTOR)
 
 # ------------------------------------------------------------------------ the case
 
@@ -91,8 +94,19 @@ class Case(CaseBase):
 # ------------------------------------------------------------------------ the scene
 
 
+def _sqrt(x: Any) -> Any:
+    """√x of a float (math), or of a numpy array (the scenes of a sweep)."""
+    if isinstance(x, int | float):
+        return math.sqrt(x)
+    import numpy as np
+
+    return np.sqrt(x)
+
+
 @dataclass(frozen=True)
 class Scene:
+    """Floats; or numpy arrays over a grid in :func:`sweep` (the formulas serve both)."""
+
     engine_mass: float  # M [kg]
     piston_mass: float  # m [kg]
     radius: float
@@ -105,12 +119,12 @@ class Scene:
     @property
     def beta(self) -> float:
         """Natural frequency √(c/M) [rad/s]."""
-        return math.sqrt(self.stiffness / self.engine_mass)
+        return _sqrt(self.stiffness / self.engine_mass)
 
     @property
     def damping(self) -> float:
         """c_d = 2·ζ·√(c·M) [N·s/m]."""
-        return 2.0 * self.zeta * math.sqrt(self.stiffness * self.engine_mass)
+        return 2.0 * self.zeta * _sqrt(self.stiffness * self.engine_mass)
 
     def force(self, order: int) -> float:
         """Amplitude of the harmonic of the given order: m·r·ω² and λ·m·r·ω² [N]."""
@@ -120,32 +134,37 @@ class Scene:
     def response(self, order: int) -> complex:
         """Complex steady amplitude X of the harmonic, x = Re(X·e^{i·order·ωt}) [m]."""
         w = order * self.omega
-        return self.force(order) / complex(
-            self.stiffness - self.engine_mass * w * w, self.damping * w
+        return self.force(order) / (
+            self.stiffness - self.engine_mass * w * w + 1j * (self.damping * w)
         )
 
     def transmitted(self, order: int) -> complex:
         """Complex amplitude of the force the mounts pass to the frame [N]."""
-        return complex(self.stiffness, self.damping * order * self.omega) * self.response(order)
+        return (self.stiffness + 1j * (self.damping * order * self.omega)) * self.response(order)
 
 
 def scene_of(case: Case) -> Scene:
-    g = case.gravity
-    engine_mass = case.engine.mass or (case.engine.weight or 0.0) / g
-    crank = case.crank
-    if case.mounts.stiffness is not None:
-        stiffness = case.mounts.stiffness
-    else:  # (7.50): c = G/f
-        assert case.mounts.static_deflection is not None
-        stiffness = engine_mass * g / case.mounts.static_deflection
+    return scene_from(_inputs(case))
+
+
+def scene_from(given: dict[str, Any]) -> Scene:
+    """The scene of the case's inputs by the names :data:`SWEEP_KEYS` gives them (None
+    where not given); floats, or numpy arrays over a sweep's grid."""
+    g = given["g"]
+
+    def either(name: str, other: str, of_other: Any) -> Any:
+        return given[name] if given[name] is not None else of_other(given[other])
+
+    engine_mass = either("engine_mass", "engine_weight", lambda weight: weight / g)
     return Scene(
         engine_mass=engine_mass,
-        piston_mass=crank.piston_mass or (crank.piston_weight or 0.0) / g,
-        radius=crank.radius,
-        rod_ratio=crank.rod_ratio,
-        omega=crank.speed or rpm_to_rad_s(crank.speed_rpm or 0.0),
-        stiffness=stiffness,
-        zeta=case.mounts.damping_ratio or 0.0,
+        piston_mass=either("piston_mass", "piston_weight", lambda weight: weight / g),
+        radius=given["radius"],
+        rod_ratio=given["rod_ratio"],
+        omega=either("speed", "speed_rpm", rpm_to_rad_s),
+        # (7.50): c = G/f
+        stiffness=either("stiffness", "static_deflection", lambda f: engine_mass * g / f),
+        zeta=given["zeta"] if given["zeta"] is not None else 0.0,
         g=g,
     )
 
@@ -189,7 +208,7 @@ def stiffness_for(scene: Scene, target: float) -> float:
     larger root lies above 2, on the isolating side."""
     z2, t2 = scene.zeta**2, target**2
     a, b, c = t2, -2.0 * t2 + 4.0 * z2 * t2 - 4.0 * z2, t2 - 1.0
-    u = (-b + math.sqrt(b * b - 4.0 * a * c)) / (2.0 * a)
+    u = (-b + _sqrt(b * b - 4.0 * a * c)) / (2.0 * a)
     return scene.engine_mass * scene.omega**2 / u
 
 
@@ -340,7 +359,7 @@ def report(result: Result) -> Report:
         mu, mu_label = 1.0 / (1.0 - ratio * ratio), "μ = 1/(1 - ω²·M/c)"
     else:
         mu, mu_label = sdof.magnification(ratio, s.zeta), "μ = |A₁|/f_st, damped"
-    r_star = math.sqrt(1.0 - 1.0 / QUASI_STATIC_FACTOR)
+    r_star = QUASI_STATIC_RATIO
     quasi = abs(mu) <= QUASI_STATIC_FACTOR and ratio < 1.0
     sections.append(
         Quantities(
@@ -441,6 +460,159 @@ def _isolation_section(s: Scene, target: float) -> Quantities:
             ),
         ],
     )
+
+
+# ------------------------------------------------------------------------- sweep
+
+#: Keys ``mdcalc sweep`` may vary in the vectorized form, and the scene input each sets.
+SWEEP_KEYS = {
+    "crank.speed": "speed",
+    "crank.speed_rpm": "speed_rpm",
+    "mounts.damping_ratio": "zeta",
+    "mounts.stiffness": "stiffness",
+    "mounts.static_deflection": "static_deflection",
+    "engine.mass": "engine_mass",
+    "engine.weight": "engine_weight",
+    "crank.piston_mass": "piston_mass",
+    "crank.piston_weight": "piston_weight",
+    "crank.radius": "radius",
+    "crank.rod_ratio": "rod_ratio",
+    "gravity": "g",
+    "isolation.transmissibility": "target",
+}
+#: Inputs of which a case gives exactly one.
+ALTERNATIVES = [
+    ("engine_mass", "engine_weight"),
+    ("piston_mass", "piston_weight"),
+    ("speed", "speed_rpm"),
+    ("stiffness", "static_deflection"),
+]
+
+
+def _inputs(case: Case) -> dict[str, Any]:
+    """The case's value of every key of :data:`SWEEP_KEYS` by its name; None if not given."""
+    given: dict[str, Any] = {}
+    for key, name in SWEEP_KEYS.items():
+        node: Any = case
+        for part in key.split("."):
+            node = getattr(node, part, None)
+        given[name] = node
+    return given
+
+
+def sweep(case: Case, grid: dict[str, Any]) -> dict[str, Any] | None:
+    """Every numeric result over a grid of scenes at once (numpy), by the formulas of
+    :func:`solve` and :func:`report`; None for a key it does not know, or where a point
+    has no answer (an undamped resonance: point by point says so)."""
+    import numpy as np
+
+    if any(key not in SWEEP_KEYS for key in grid):
+        return None
+    varied = {SWEEP_KEYS[key]: np.asarray(values, dtype=float) for key, values in grid.items()}
+    shape = np.broadcast_shapes(*(values.shape for values in varied.values()))
+    given: dict[str, Any] = {
+        name: None if value is None else np.broadcast_to(value, shape)
+        for name, value in (_inputs(case) | varied).items()
+    }
+    if any(given[a] is not None and given[b] is not None for a, b in ALTERNATIVES):
+        return None  # not a valid case (the sweep's plan refuses it)
+    s = scene_from(given)
+    beta, zeta = s.beta, s.zeta
+    ratio = s.omega / beta
+    if np.any((zeta == 0.0) & ((ratio == 1.0) | (ratio == 0.5))):
+        return None
+    with np.errstate(divide="ignore", invalid="ignore"):
+        first, second = s.response(1), s.response(2)
+        if not (np.all(np.isfinite(first)) and np.all(np.isfinite(second))):
+            return None  # c = M·ω² to round-off: point by point says what happens
+
+        def magnification(r: Any) -> Any:  # sdof.magnification
+            return 1.0 / np.hypot(1.0 - r * r, 2.0 * zeta * r)
+
+        results = {
+            "engine_mass": s.engine_mass,
+            "piston_mass": s.piston_mass,
+            "crank_radius": s.radius,
+            "rod_ratio": s.rod_ratio,
+            "crank_speed": s.omega,
+            "crank_speed_rpm": s.omega * RAD_S_TO_RPM,
+            "stiffness": s.stiffness,
+            "static_deflection": s.engine_mass * s.g / s.stiffness,
+            "natural_frequency": beta,
+            "natural_frequency_hz": beta / (2.0 * math.pi),
+            "resonant_speed_1": beta,
+            "resonant_speed_2": beta / 2.0,
+            "frequency_ratio": ratio,
+            "force_1": s.force(1),
+            "force_2": s.force(2),
+            "amplitude_1": np.abs(first),
+            "amplitude_2": np.abs(second),
+            "peak_displacement": peak_of_two_harmonics_array(first, second),
+            "dynamic_factor": np.where(
+                zeta == 0.0, 1.0 / (1.0 - ratio * ratio), magnification(ratio)
+            ),
+            "quasi_static_ratio": QUASI_STATIC_RATIO,
+            "quasi_static_speed": QUASI_STATIC_RATIO * beta,
+            "quasi_static_period_ratio": 1.0 / QUASI_STATIC_RATIO,
+        }
+        if given["zeta"] is not None:  # as in _transmission_section
+            forces = s.transmitted(1), s.transmitted(2)
+            results |= {
+                "damping_ratio": zeta,
+                "damping_coefficient": s.damping,
+                "transmitted_force_peak": peak_of_two_harmonics_array(*forces),
+            }
+            for order, force in zip((1, 2), forces, strict=True):
+                r = order * s.omega / beta
+                transmissibility = np.hypot(1.0, 2.0 * zeta * r) * magnification(r)  # sdof's
+                results[f"transmissibility_{order}"] = transmissibility
+                results[f"transmitted_force_{order}"] = np.abs(force)
+        if given["target"] is not None:  # as in _isolation_section
+            stiffness = stiffness_for(s, given["target"])
+            results |= {
+                "target_transmissibility": given["target"],
+                "required_stiffness": stiffness,
+                "required_static_deflection": s.engine_mass * s.g / stiffness,
+                "required_natural_frequency": np.sqrt(stiffness / s.engine_mass),
+            }
+    return results
+
+
+def peak_of_two_harmonics_array(first: Any, second: Any) -> Any:
+    """The peak of :func:`peak_of_two_harmonics` over arrays (numpy), without a search.
+
+    With X₁ = A·e^{iα}, X₂ = B·e^{iγ} and ψ = θ + α, the sum is A·cos ψ + B·cos(2ψ + δ),
+    δ = γ - 2α: on the unit circle (cos ψ, sin ψ) a quadratic form with eigenvalues ±B
+    plus a linear term, f = B·(p² - q²) + P·p + R·q in the form's eigenvectors, where
+    P + iR = A·e^{iδ/2}. Its maximum on p² + q² = 1 (a trust-region problem) is at
+    p = P/(2ν), q = R/(2(ν + 2B)), ν ≥ 0 the root of P²/ν² + R²/(ν + 2B)² = 4 (ν = 0
+    if there is none: the "hard case"); Newton's method on the concave 1/√(...) - 1/2
+    climbs to it from below. The maximum of -f is the same with P² and R² swapped.
+    f is evaluated at a point of the circle, so it is never above the peak; the search
+    finds the same extremum (it is π/2 or more from any other), equal to round-off."""
+    import numpy as np
+
+    first, second = np.broadcast_arrays(np.atleast_1d(first), second)
+    b = np.abs(second)
+    half = np.sqrt(second) * np.conj(first) / np.sqrt(b)  # ±(P + iR)
+    p2, r2 = half.real**2, half.imag**2
+
+    def highest(p2: Any, r2: Any) -> Any:  # max of f with these P², R²
+        nu = np.fmax(np.sqrt(p2) / 2.0, np.sqrt(r2) / 2.0 - 2.0 * b)  # ν ≤ the root
+        todo = np.flatnonzero((p2 > 0.0) & (r2 > 0.0))  # else ν is the root already
+        for _ in range(100):
+            if todo.size == 0:
+                break
+            n, m = nu[todo], nu[todo] + 2.0 * b[todo]
+            x, y = p2[todo] / n**2, r2[todo] / m**2
+            step = np.fmax((x + y) * (np.sqrt(x + y) - 2.0) / (2.0 * (x / n + y / m)), 0.0)
+            nu[todo] = n + step
+            todo = todo[step > 1e-12 * nu[todo]]
+        q = np.sqrt(r2) / (2.0 * (nu + 2.0 * b))
+        p = np.sqrt(np.fmax(1.0 - q * q, 0.0))
+        return b * (p * p - q * q) + np.sqrt(p2) * p + np.sqrt(r2) * q
+
+    return np.maximum(highest(p2, r2), highest(r2, p2))
 
 
 def template() -> dict[str, Any]:
