@@ -1118,7 +1118,8 @@ BAD: dict[str, tuple[Any, str]] = {
         'problem = "resonance"\n[chain]\ninertias = [1.0, 1.0]\nstiffnesses = [inf]\n',
         "chain.stiffnesses[0]",
     ),
-    "string-order": ({**chain_with(), "resonance": {"order": "4.5"}}, "resonance.order"),
+    # "4.5" is a dimensionless quantity string (issue 9); a word is refused.
+    "string-order": ({**chain_with(), "resonance": {"order": "four"}}, "resonance.order"),
 }
 
 
