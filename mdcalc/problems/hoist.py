@@ -230,6 +230,19 @@ class StartMotion:
 
 def start_motion(case: Case, st: Steady, inertia: float) -> StartMotion | None:
     """Uniform start (7.28), (7.32); None when the catalogue torque cannot start the load."""
+    return uniform_start(case, st, inertia) if can_start(case, st) else None
+
+
+def can_start(case: Case, st: Steady) -> bool:
+    """Always with t_p given; with a catalogue torque, when M_start > M_c."""
+    if case.start.time is not None:
+        return True
+    assert case.start.starting_torque is not None
+    return case.start.starting_torque > st.static_torque
+
+
+def uniform_start(case: Case, st: Steady, inertia: float) -> StartMotion:
+    """(7.28), (7.32) for a load the motor starts (also over numpy arrays, see :func:`sweep`)."""
     omega = st.motor_speed
     if case.start.time is not None:
         t_p = case.start.time
@@ -237,8 +250,6 @@ def start_motion(case: Case, st: Steady, inertia: float) -> StartMotion | None:
     else:
         assert case.start.starting_torque is not None
         torque = case.start.starting_torque
-        if torque <= st.static_torque:
-            return None
         t_p = inertia * omega / (torque - st.static_torque)
     return StartMotion(
         t_p, omega / t_p, torque - st.static_torque, torque, case.load.lifting_speed / t_p
@@ -750,6 +761,94 @@ def report(result: Result) -> Report:
         sections += [result.rope_hanging, result.rope_ground]
     title = case.title or "Hoist motor and brake"
     return Report("hoist", title, sections, notes, result.status, result.message)
+
+
+# ------------------------------------------------------------------------- sweep
+
+#: Keys ``mdcalc sweep`` may vary in the vectorized form (N: any list index), and what
+#: each sets. The rope's keys are not here: its peaks need the ODE runs.
+SWEEP_KEYS = {
+    "gravity": "g",
+    "load.mass": "m",
+    "load.lifting_speed": "V",
+    "drive.motor_speed_rpm": "ω1",
+    "drive.motor_inertia": "J1",
+    "drive.stage_efficiencies.N": "η_i",
+    "drive.pulley_efficiency": "η of the reeving",
+    "drive.brake_safety_factor": "K_t",
+    "drive.inertia_estimate_factor": "factor of (7.31)",
+    "drive.shafts.N.inertia": "J_k",
+    "drive.shafts.N.speed_rpm": "ω_k",
+    "drive.shafts.N.ratio": "ω1/ω_k",
+    "start.time": "t_p",
+    "start.starting_torque": "M_start",
+}
+
+
+def sweep(case: Case, grid: dict[str, Any]) -> dict[str, Any] | None:
+    """Every numeric result of a rope-less scene over a grid at once (numpy), by the
+    formulas of :func:`solve` run on a copy of the case that holds the grid's arrays.
+
+    None with a rope (its peaks need the ODE runs), for a key this form does not know
+    or one that switches an alternative (t_p or M_start, speed_rpm or ratio), and when
+    the motor cannot start the load at some point (that point has no answer, exit 3).
+    """
+    import numpy as np
+
+    if case.rope is not None:
+        return None
+    for key, column in grid.items():
+        parts = key.split(".")
+        pattern = ".".join("N" if p.isdigit() else p for p in parts)
+        if pattern not in SWEEP_KEYS or _value_at(case, parts) is None:
+            return None
+        case = _with_value(case, parts, np.asarray(column, dtype=float))
+    st = steady(case)
+    if not np.all(can_start(case, st)):
+        return None
+    inertia = reduced_inertia(case, st.motor_speed)
+    motion = uniform_start(case, st, inertia.total)
+    values: dict[str, Any] = {
+        "weight": st.weight,
+        "total_efficiency": st.efficiency,
+        "useful_power": st.useful_power / 1e3,
+        "motor_power": st.motor_power / 1e3,
+        "motor_speed": st.motor_speed,
+        "static_torque": st.static_torque,
+        "brake_torque": st.brake_torque,
+        "lowering_torque": st.lowering_torque,
+        "brake_margin": st.brake_torque / st.lowering_torque,
+        "motor_inertia": inertia.motor,
+        "reduced_inertia": inertia.total,
+        "start_time": motion.time,
+        "angular_acceleration": motion.angular_acceleration,
+        "inertia_torque": motion.inertia_torque,
+        "starting_torque": motion.starting_torque,
+        "load_acceleration": motion.load_acceleration,
+    }
+    if not inertia.estimated:  # the report shows these with the shafts only
+        values["shaft_inertia"] = inertia.shafts
+        values["load_inertia"] = inertia.load
+        values["inertia_ratio"] = inertia.total / inertia.motor
+    return values
+
+
+def _value_at(node: Any, parts: list[str]) -> Any:
+    for part in parts:
+        node = node[int(part)] if isinstance(node, list) else getattr(node, part)
+    return node
+
+
+def _with_value(node: Any, parts: list[str], value: Any) -> Any:
+    """``node`` (the case, a section or a list) with ``value`` at ``parts``, copied on
+    the way and not validated, so that ``value`` may be a numpy array."""
+    if not parts:
+        return value
+    head, rest = parts[0], parts[1:]
+    if isinstance(node, list):
+        i = int(head)
+        return [*node[:i], _with_value(node[i], rest, value), *node[i + 1 :]]
+    return node.model_copy(update={head: _with_value(getattr(node, head), rest, value)})
 
 
 def template() -> dict[str, Any]:
