@@ -151,4 +151,4 @@ def _draw(ax: object, chart: Chart) -> None:
     a.set_ylabel(chart.y_label)
     a.grid(True, alpha=0.3)
     if any(s.label for s in chart.series) or any(m.label for m in chart.marks):
-        a.legend(fontsize=8)
+        a.legend(fontsize=8, framealpha=0.7)  # see the curve under a legend
