@@ -108,7 +108,10 @@ class Harmonic(CaseModel):
 
     @property
     def omega(self) -> float:
-        return self.speed if self.speed is not None else rpm_to_rad_s(self.speed_rpm or 0.0)
+        if self.speed is not None:
+            return self.speed
+        assert self.speed_rpm is not None  # validated: exactly one (no `or`: arrays in sweep)
+        return rpm_to_rad_s(self.speed_rpm)
 
 
 class Pulse(CaseModel):
@@ -164,10 +167,13 @@ class Case(CaseBase):
 
 @dataclass(frozen=True)
 class Scene:
+    """Floats; in :func:`sweep`, numpy arrays with ``xp`` numpy (same formulas)."""
+
     j1: float
     j2: float
     stiffness: float  # c [N·m/rad]
     p: float  # [1/s]
+    xp: Any = field(default=math, repr=False, compare=False)  # math or numpy
 
     @property
     def reduced_inertia(self) -> float:
@@ -175,7 +181,7 @@ class Scene:
 
     @property
     def beta(self) -> float:
-        return math.sqrt(self.stiffness / self.reduced_inertia)
+        return self.xp.sqrt(self.stiffness / self.reduced_inertia)
 
     @property
     def period(self) -> float:
@@ -192,11 +198,16 @@ class Scene:
         return self.p * self.reduced_inertia
 
 
-def scene_of(case: Case) -> Scene:
+def scene_of(case: Case, xp: Any = math) -> Scene:
+    """The scene; with ``xp`` numpy, of a case whose fields are arrays (:func:`sweep`)."""
     k = case.coupling
-    stiffness = k.stiffness if k.stiffness is not None else (k.stiffness_nm_per_deg or 0.0) / DEG
+    if k.stiffness is not None:
+        stiffness = k.stiffness
+    else:  # validated: exactly one (no `or`: arrays in sweep)
+        assert k.stiffness_nm_per_deg is not None
+        stiffness = k.stiffness_nm_per_deg / DEG
     j = k.driving_inertia * k.driven_inertia / (k.driving_inertia + k.driven_inertia)
-    tau = 2.0 * math.pi / math.sqrt(stiffness / j)
+    tau = 2.0 * math.pi / xp.sqrt(stiffness / j)
     if k.absorption is not None:
         p = k.absorption / tau  # (8.7), (8.14): δ = ψ/2 = p·τ/2
     elif k.log_decrement is not None:
@@ -205,7 +216,7 @@ def scene_of(case: Case) -> Scene:
         p = k.damping / j  # p = α·(1/J₁ + 1/J₂)
     else:
         p = 0.0
-    return Scene(k.driving_inertia, k.driven_inertia, stiffness, p)
+    return Scene(k.driving_inertia, k.driven_inertia, stiffness, p, xp)
 
 
 # ---------------------------------------------------------------------- transients
@@ -534,48 +545,66 @@ def _step_section(step: Step, s: Scene) -> Quantities:
     return Quantities("Suddenly applied torque (8.15)-(8.16)", items)
 
 
-def _harmonic_sections(h: Harmonic, s: Scene) -> tuple[list[Any], list[Note]]:
+def harmonic_numbers(h: Harmonic, s: Scene) -> dict[str, Any]:
+    """(8.21)-(8.27) by result key, floats or (in :func:`sweep`) arrays; the report
+    shows steady_torque_total and gamma only with damping. Undamped resonance (no
+    answer) divides by 0."""
+    xp = s.xp
     a1, a2 = h.driving_torque / s.j1, h.driven_torque / s.j2
     alpha, gamma_phase = h.driving_phase_deg * DEG, h.driven_phase_deg * DEG
-    combined = complex(
-        a1 * math.cos(alpha) + a2 * math.cos(gamma_phase),
-        a1 * math.sin(alpha) + a2 * math.sin(gamma_phase),
-    )
-    m = abs(combined)  # (8.21)
-    eps = math.atan2(combined.imag, combined.real)
-    omega = h.omega
-    lam = omega / s.beta
+    real = a1 * xp.cos(alpha) + a2 * xp.cos(gamma_phase)
+    imag = a1 * xp.sin(alpha) + a2 * xp.sin(gamma_phase)
+    m = xp.hypot(real, imag)  # (8.21)
+    twist = m / xp.hypot(s.beta**2 - h.omega**2, s.p * h.omega)  # (8.27)
+    return {
+        "combined_amplitude": m,
+        "combined_phase": xp.degrees(xp.atan2(imag, real)),
+        "frequency_ratio": h.omega / s.beta,
+        "steady_twist": twist,
+        "steady_torque": s.stiffness * twist,
+        "steady_torque_total": xp.hypot(s.stiffness, s.alpha * h.omega) * twist,
+        "gamma": s.p / s.beta,
+    }
+
+
+def resonance(m: Any, s: Scene) -> tuple[Any, Any]:
+    """λ of the resonance peak (8.31) and its twist (corrected (8.32)) for the combined
+    amplitude m; the report shows them for p > 0 and γ² < 2."""
     gamma = s.p / s.beta
-    twist = m / math.hypot(s.beta**2 - omega**2, s.p * omega)  # (8.27)
+    peak = m / (s.beta**2 * gamma * s.xp.sqrt(1.0 - gamma**2 / 4.0))
+    return s.xp.sqrt(1 - gamma**2 / 2), peak
+
+
+def _harmonic_sections(h: Harmonic, s: Scene) -> tuple[list[Any], list[Note]]:
+    n = harmonic_numbers(h, s)
+    omega, lam, gamma = h.omega, n["frequency_ratio"], n["gamma"]
     items = [
-        Quantity("combined_amplitude", "M (8.21), in units of M/J", m, "rad/s²"),
-        Quantity("combined_phase", "ε", math.degrees(eps), "deg"),
+        Quantity(
+            "combined_amplitude", "M (8.21), in units of M/J", n["combined_amplitude"], "rad/s²"
+        ),
+        Quantity("combined_phase", "ε", n["combined_phase"], "deg"),
         Quantity("frequency_ratio", "λ = ω/β", lam, ""),
-        Quantity("steady_twist", "Steady twist amplitude φ_max (8.27)", twist, "rad"),
-        Quantity("steady_torque", "Elastic torque amplitude c·φ_max", s.stiffness * twist, "N·m"),
+        Quantity("steady_twist", "Steady twist amplitude φ_max (8.27)", n["steady_twist"], "rad"),
+        Quantity("steady_torque", "Elastic torque amplitude c·φ_max", n["steady_torque"], "N·m"),
     ]
     if s.p > 0.0:
         items.append(
             Quantity(
                 "steady_torque_total",
                 "Torque amplitude with damping √(c² + (αω)²)·φ_max",
-                math.hypot(s.stiffness, s.alpha * omega) * twist,
+                n["steady_torque_total"],
                 "N·m",
             )
         )
         items.append(Quantity("gamma", "γ = p/β", gamma, ""))
         if gamma * gamma < 2.0:
+            ratio, peak = resonance(n["combined_amplitude"], s)
             items += [
-                Quantity(
-                    "resonance_ratio",
-                    "Peak at λ = √(1 - γ²/2) (8.31)",
-                    math.sqrt(1 - gamma**2 / 2),
-                    "",
-                ),
+                Quantity("resonance_ratio", "Peak at λ = √(1 - γ²/2) (8.31)", ratio, ""),
                 Quantity(
                     "resonance_twist",
                     "Peak twist M/(β²·γ·√(1 - γ²/4))",
-                    m / (s.beta**2 * gamma * math.sqrt(1.0 - gamma**2 / 4.0)),
+                    peak,
                     "rad",
                     "the printed (8.32) has √(1 - γ²/2)",
                 ),
@@ -603,6 +632,113 @@ def _harmonic_sections(h: Harmonic, s: Scene) -> tuple[list[Any], list[Note]]:
             )
         )
     return [Quantities("Harmonic torques (8.19)-(8.27)", items), curve], notes
+
+
+# ------------------------------------------------------------------------- sweep
+
+#: Keys ``mdcalc sweep`` may vary in the vectorized form, and the scene input each sets.
+SWEEP_KEYS = {
+    "coupling.driving_inertia": "j1",
+    "coupling.driven_inertia": "j2",
+    "coupling.stiffness": "stiffness",
+    "coupling.stiffness_nm_per_deg": "stiffness",
+    "coupling.absorption": "p",
+    "coupling.log_decrement": "p",
+    "coupling.damping": "p",
+    "step.torque": "step_torque",
+    "harmonic.driving_torque": "combined_amplitude",
+    "harmonic.driving_phase_deg": "combined_amplitude",
+    "harmonic.driven_torque": "combined_amplitude",
+    "harmonic.driven_phase_deg": "combined_amplitude",
+    "harmonic.speed": "omega",
+    "harmonic.speed_rpm": "omega",
+}
+SECTIONS: dict[str, type[CaseModel]] = {
+    "coupling": Coupling,
+    "step": Step,
+    "harmonic": Harmonic,
+}
+
+
+def sweep(case: Case, grid: dict[str, Any]) -> dict[str, Any] | None:
+    """The closed-form results over a grid of scenes at once (numpy): the coupling,
+    the suddenly applied torque and the harmonic torques, by the formulas of the
+    report; missing (NaN) where the report does not show a value. Without the pulse,
+    ramp and table results (Duhamel: point by point). None for another key, or where
+    a point is at undamped resonance (no answer)."""
+    import numpy as np
+
+    if any(key not in SWEEP_KEYS for key in grid):
+        return None
+    update: dict[str, dict[str, Any]] = {name: {} for name in SECTIONS}
+    for key, values in grid.items():
+        section, _, name = key.partition(".")
+        update[section][name] = np.asarray(values, dtype=float)
+    # The case with the grid's arrays in its sections (no validation: the sweep has
+    # validated the grid's corners), so that scene_of picks the alternatives it does.
+    sections: dict[str, Any] = {}
+    for section, model in SECTIONS.items():
+        base = getattr(case, section)
+        if base is not None:
+            sections[section] = base.model_copy(update=update[section])
+        elif update[section]:  # a section the grid adds (step.torque)
+            sections[section] = model.model_construct(**update[section])
+    arrays = case.model_copy(update=sections)
+    s = scene_of(arrays, np)
+    damped = s.p > 0.0
+    with np.errstate(divide="ignore", invalid="ignore"):
+        out: dict[str, Any] = {
+            "driving_inertia": s.j1,
+            "driven_inertia": s.j2,
+            "stiffness": s.stiffness,
+            "reduced_inertia": s.reduced_inertia,
+            "natural_frequency": s.beta,
+            "period": s.period,
+            "damping_p": np.where(damped, s.p, np.nan),
+            "damping_alpha": np.where(damped, s.alpha, np.nan),
+            "log_decrement": np.where(damped, s.p * s.period / 2.0, np.nan),
+            "absorption": np.where(damped, s.p * s.period, np.nan),
+            "damping_ratio": np.where(damped, s.zeta, np.nan),
+        }
+        if arrays.step is not None:
+            out |= _step_arrays(arrays.step.torque, s)
+        if arrays.harmonic is not None:
+            numbers = harmonic_numbers(arrays.harmonic, s)
+            if np.any((s.p == 0.0) & (numbers["frequency_ratio"] == 1.0)):
+                return None  # no answer there, as the point-by-point status says
+            resonant = damped & (numbers["gamma"] * numbers["gamma"] < 2.0)
+            ratio, peak = resonance(numbers["combined_amplitude"], s)
+            out |= numbers | {
+                "steady_torque_total": np.where(damped, numbers["steady_torque_total"], np.nan),
+                "gamma": np.where(damped, numbers["gamma"], np.nan),
+                "resonance_ratio": np.where(resonant, ratio, np.nan),
+                "resonance_twist": np.where(resonant, peak, np.nan),
+            }
+    return out
+
+
+def _step_arrays(torque: Any, s: Scene) -> dict[str, Any]:
+    """The suddenly applied torque's results, as in :func:`_step_section` with
+    sdof.step_peak, step_peak_time and step_envelope on arrays (errors ignored)."""
+    import numpy as np
+
+    zeta, beta = s.zeta, s.beta
+    root = np.sqrt(1.0 - zeta * zeta)  # 0 or NaN from ζ = 1 on: factor 1, no peak time
+    factor = np.where(zeta < 1.0, 1.0 + np.exp(-math.pi * zeta / root), 1.0)
+    out = {
+        "step_dynamic_factor": factor,
+        "step_peak_time": np.where(zeta < 1.0, math.pi / (beta * root), np.nan),
+        "envelope_at_period": 1.0 + np.exp(-zeta * beta * s.period),
+        "envelope_at_1_5_period": 1.0 + np.exp(-zeta * beta * (1.5 * s.period)),
+        "undamped_dynamic_factor": 2.0,
+    }
+    if torque is not None:
+        out |= {
+            "static_twist": torque / s.stiffness,
+            "peak_twist": factor * torque / s.stiffness,
+            "peak_torque": factor * torque,
+        }
+    return out
 
 
 def template() -> dict[str, Any]:
