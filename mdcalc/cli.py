@@ -202,6 +202,15 @@ SaveOption = Annotated[
         metavar="FILE.toml",
     ),
 ]
+CaseArgument = Annotated[
+    Path,
+    typer.Argument(
+        help="Case file (TOML).",
+        show_default=False,
+        metavar="CASE.toml",
+        autocompletion=complete_case,
+    ),
+]
 ForceOption = Annotated[
     bool, typer.Option("--force", help="Let --plot and --save overwrite a file.")
 ]
@@ -209,15 +218,7 @@ ForceOption = Annotated[
 
 def _make_problem_command(spec: ProblemSpec) -> Callable[..., None]:
     def command(
-        case: Annotated[
-            Path,
-            typer.Argument(
-                help="Case file (TOML).",
-                show_default=False,
-                metavar="CASE.toml",
-                autocompletion=complete_case,
-            ),
-        ],
+        case: CaseArgument,
         as_json: JsonOption = False,
         plot: PlotOption = None,
         save: SaveOption = None,
@@ -391,15 +392,7 @@ def _print_run_summary(
 
 @app.command("sweep")
 def sweep_command(
-    case: Annotated[
-        Path,
-        typer.Argument(
-            help="Case file (TOML).",
-            show_default=False,
-            metavar="CASE.toml",
-            autocompletion=complete_case,
-        ),
-    ],
+    case: CaseArgument,
     vary: Annotated[
         list[str],
         typer.Option(
