@@ -14,13 +14,16 @@ during the start and G after it. The load either hangs on the rope (closed form
 (7.92)-(7.96), exact for this model) or lies on the ground with the rope slack
 (7.97)-(7.98); for the latter a tight ODE run with lift-off and touch-down events is
 the reference.
+
+``--plot``: the rope dynamic factor against time from the exact piecewise solution
+of the same model (:func:`rope_history`), load hanging and load on the ground.
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Annotated, Any, Literal
+from typing import TYPE_CHECKING, Annotated, Any, Literal
 
 from pydantic import Field, model_validator
 
@@ -31,6 +34,9 @@ from mdcalc.methods import Method, NotApplicable, compare
 from mdcalc.model import CaseBase, CaseModel
 from mdcalc.report import MethodQuantity, MethodsTable, Note, Quantities, Quantity, Report
 from mdcalc.tables import BRAKE_SAFETY_FACTOR, HOIST_ACCELERATION, Range
+
+if TYPE_CHECKING:
+    from mdcalc.plot import Chart
 
 Efficiency = Annotated[float, Field(gt=0, le=1)]
 
@@ -761,6 +767,392 @@ def report(result: Result) -> Report:
         sections += [result.rope_hanging, result.rope_ground]
     title = case.title or "Hoist motor and brake"
     return Report("hoist", title, sections, notes, result.status, result.message)
+
+
+# ------------------------------------------------------------------------- charts
+
+#: Points per rope period on the charts' curves.
+CHART_SAMPLES_PER_PERIOD = 48
+#: A horizon longer than this many rope periods is drawn only over its opening
+#: (the lift-off and the first peak, and :data:`CHART_WINDOW_PERIODS` periods after).
+CHART_PERIODS = 60
+CHART_WINDOW_PERIODS = 6
+#: Smooth pieces of the exact rope solution before it gives up (a chattering rope).
+MAX_ROPE_PIECES = 10_000
+
+
+@dataclass(frozen=True)
+class RopePiece:
+    """One smooth piece of the exact two-mass solution from ``t0`` to ``t1``: the rope
+    taut or slack, the load on the ground or in the air, the drive force ``drive``
+    constant. The state at ``t0``: rope stretch u = x1 - y - s and its rate, load
+    height y and speed."""
+
+    t0: float
+    t1: float
+    taut: bool
+    grounded: bool
+    drive: float  # D [N]
+    u: float  # [m]
+    du: float  # [m/s]
+    y: float  # [m]
+    vy: float  # [m/s]
+
+
+@dataclass(frozen=True)
+class RopeHistory:
+    """The exact solution of :func:`rope_ode`'s model over the same horizon, piece by
+    piece, with its events: (time, what) for "taut", "slack", "lift-off",
+    "touch-down" and "start ends"."""
+
+    pieces: list[RopePiece]
+    events: list[tuple[float, str]]
+    horizon: float
+    complete: bool  # False: stopped at MAX_ROPE_PIECES
+
+
+def _frequency(r: RopeScene, p: RopePiece) -> float:
+    """Of a taut piece: β1 = √(c/m1) with the load on the ground, β in the air."""
+    return math.sqrt(r.c / r.m1) if p.grounded else r.beta
+
+
+def _centre(r: RopeScene, p: RopePiece) -> float:
+    """Stretch about which a taut piece swings: c·u = D on the ground, and in the
+    air c·u = (D·m2 + G·m1)/(m1 + m2) (G + m2·a during the start, G after it)."""
+    if p.grounded:
+        return p.drive / r.c
+    return (p.drive * r.m2 + r.weight * r.m1) / ((r.m1 + r.m2) * r.c)
+
+
+def _stretch_acceleration(r: RopeScene, p: RopePiece) -> float:
+    """u'' of a slack piece: the drive accelerates at D/m1, a flying load falls at g."""
+    return p.drive / r.m1 + (0.0 if p.grounded else r.weight / r.m2)
+
+
+def _stretch(r: RopeScene, p: RopePiece, tau: Any) -> tuple[Any, Any]:
+    """u and u' at ``tau`` after the piece's start (float or numpy array)."""
+    import numpy as np
+
+    if not p.taut:
+        acc = _stretch_acceleration(r, p)
+        return p.u + p.du * tau + 0.5 * acc * tau * tau, p.du + acc * tau
+    w, centre = _frequency(r, p), _centre(r, p)
+    x = w * tau
+    a, b = p.u - centre, p.du / w
+    return centre + a * np.cos(x) + b * np.sin(x), w * (b * np.cos(x) - a * np.sin(x))
+
+
+def _load(r: RopeScene, p: RopePiece, tau: Any) -> tuple[Any, Any]:
+    """Load height y and speed at ``tau`` after the piece's start. In a taut piece
+    y'' = (c·u - G)/m2, integrated with P(x) = x²/2 - (1 - cos x) and
+    Q(x) = x - sin x, which keep their accuracy at small x (no cancellation at
+    lift-off, where c·u = G)."""
+    import numpy as np
+
+    if p.grounded:
+        return 0.0 * tau, 0.0 * tau
+    g = r.weight / r.m2
+    if not p.taut:
+        return p.y + p.vy * tau - 0.5 * g * tau * tau, p.vy - g * tau
+    w, centre = _frequency(r, p), _centre(r, p)
+    x = np.asarray(w * tau, dtype=float)
+    small = np.abs(x) < 1e-2
+    x2 = x * x
+    p_x = np.where(small, x2 * x2 * (1 / 24 - x2 / 720), 0.5 * x2 - (1.0 - np.cos(x)))
+    q_x = np.where(small, x * x2 * (1 / 6 - x2 / 120), x - np.sin(x))
+    k = r.c / r.m2
+    excess = (r.c * p.u - r.weight) / r.m2  # y'' at the piece's start
+    a, b = p.u - centre, p.du / w
+    y = p.y + p.vy * tau + 0.5 * excess * tau * tau + k * (b * q_x - a * p_x) / (w * w)
+    vy = p.vy + excess * tau + k * (b * (1.0 - np.cos(x)) - a * q_x) / w
+    return y, vy
+
+
+def _sine_crossing(r: RopeScene, p: RopePiece, level: float, rising: bool) -> float:
+    """First time after a taut piece's start at which u crosses ``level``."""
+    w, centre = _frequency(r, p), _centre(r, p)
+    a, b = p.u - centre, p.du / w
+    amplitude = math.hypot(a, b)
+    if amplitude == 0.0:
+        return math.inf
+    q = (level - centre) / amplitude
+    if not -1.0 < q < 1.0:
+        return math.inf  # never reached, or only touched
+    # u = centre + amplitude·cos(x - φ); rising where sin(x - φ) < 0
+    phi = math.atan2(b, a)
+    angle = (phi + (-1.0 if rising else 1.0) * math.acos(q)) % (2.0 * math.pi)
+    if angle < 1e-9:
+        angle += 2.0 * math.pi  # the crossing the piece starts at
+    return angle / w
+
+
+def _quadratic_crossing(p0: float, p1: float, p2: float, rising: bool) -> float:
+    """First τ > 0 at which p0 + p1·τ + p2·τ²/2 crosses 0 going up (or down)."""
+    roots: list[float] = []
+    if p2 == 0.0:
+        if p1 != 0.0:
+            roots = [-p0 / p1]
+    else:
+        disc = p1 * p1 - 2.0 * p2 * p0
+        if disc < 0.0:
+            return math.inf
+        q = -0.5 * (p1 + math.copysign(math.sqrt(disc), p1))
+        roots = [q / (0.5 * p2), p0 / q] if q != 0.0 else [0.0]
+    for root in sorted(roots):
+        slope = p1 + p2 * root
+        if root > 0.0 and slope != 0.0 and (slope > 0.0) == rising:
+            return root
+    return math.inf
+
+
+def _touch_down(r: RopeScene, p: RopePiece, span: float) -> float:
+    """First time in (0, span] at which a taut piece's load comes down to the ground.
+    y is a trend y0 + v·τ + y''·τ²/2 plus a swing of at most ``reach``: only where the
+    trend is below ``reach`` can y reach 0; there it is sampled at 32 points a period,
+    and the first sign change bisected."""
+    import numpy as np
+
+    w, centre = _frequency(r, p), _centre(r, p)
+    k = r.c / (r.m2 * w * w)
+    a, b = p.u - centre, p.du / w
+    # y = trend(τ) + k·[a·(1 - cos x) - b·sin x] >= trend(τ) - k·(hypot(a, b) - a)
+    reach = k * (math.hypot(a, b) - a)
+    slope = p.vy + k * w * b
+    curvature = (r.c * centre - r.weight) / r.m2
+    start, stop = 0.0, span
+    if curvature > 0.0:  # the trend is below reach between two roots at most
+        disc = slope * slope - 2.0 * curvature * (p.y - reach)
+        if disc < 0.0:
+            return math.inf
+        root = math.sqrt(disc)
+        start = max(0.0, (-slope - root) / curvature)
+        stop = min(span, (-slope + root) / curvature)
+    step = 2.0 * math.pi / w / 32.0
+    while start < stop:
+        count = min(4096, math.ceil((stop - start) / step))
+        tau = np.minimum(start + step * np.arange(1, count + 1), stop)
+        heights, _ = _load(r, p, tau)
+        below = np.nonzero(heights < 0.0)[0]
+        if below.size:
+            j = int(below[0])
+            lo, hi = (start if j == 0 else float(tau[j - 1])), float(tau[j])
+            for _ in range(80):
+                mid = 0.5 * (lo + hi)
+                if float(_load(r, p, mid)[0]) < 0.0:
+                    hi = mid
+                else:
+                    lo = mid
+            return hi
+        start = float(tau[-1])
+    return math.inf
+
+
+def rope_history(r: RopeScene, hanging: bool) -> RopeHistory:
+    """The exact piecewise solution of :func:`rope_ode`'s two-mass model: in each
+    smooth piece the stretch is a sine about its centre (taut rope) or a parabola
+    (slack), and the events (rope taut or slack, lift-off, touch-down, the end of
+    the start) have closed forms -- a touch-down of a load on a taut rope is
+    bisected. The horizon is :func:`rope_ode`'s: the start, then two periods after
+    the start or after the last lift-off, whichever is later."""
+    t_p, period = r.start_time, 2.0 * math.pi / r.beta
+    drive = r.drive_force if t_p > 0.0 else r.weight
+    if hanging:
+        p = RopePiece(0.0, 0.0, True, False, drive, r.weight / r.c, 0.0, 0.0, 0.0)
+        t_lift = 0.0
+    else:
+        p = RopePiece(0.0, 0.0, r.slack == 0.0, True, drive, -r.slack, 0.0, 0.0, 0.0)
+        t_lift = math.inf
+    pieces: list[RopePiece] = []
+    events: list[tuple[float, str]] = []
+    t = 0.0
+    while len(pieces) < MAX_ROPE_PIECES:
+        if t < t_p:
+            limit = t_p
+        elif p.grounded:
+            limit = math.inf
+        else:
+            limit = max(t_p, t_lift) + 2.0 * period
+            if t >= limit:
+                return RopeHistory(pieces, events, t, True)
+        found: list[tuple[float, str]] = []
+        if p.taut:
+            found.append((_sine_crossing(r, p, 0.0, rising=False), "slack"))
+            if p.grounded:
+                found.append((_sine_crossing(r, p, r.weight / r.c, rising=True), "lift-off"))
+        else:
+            acc = _stretch_acceleration(r, p)
+            found.append((_quadratic_crossing(p.u, p.du, acc, rising=True), "taut"))
+        if not hanging and not p.grounded:
+            span = min(limit, *(f[0] + t for f in found)) - t
+            if p.taut:
+                found.append((_touch_down(r, p, span), "touch-down"))
+            else:
+                g = r.weight / r.m2
+                found.append((_quadratic_crossing(p.y, p.vy, -g, rising=False), "touch-down"))
+        tau, what = min(found)
+        if t + tau >= limit:
+            tau, what = limit - t, "start ends" if limit == t_p else "horizon"
+        if not math.isfinite(tau):
+            break  # nothing more happens (not reached: D >= G keeps it moving)
+        u, du = (float(v) for v in _stretch(r, p, tau))
+        y, vy = (float(v) for v in _load(r, p, tau))
+        pieces.append(RopePiece(t, t + tau, p.taut, p.grounded, p.drive, p.u, p.du, p.y, p.vy))
+        t = t_p if what == "start ends" else t + tau
+        taut, grounded, drive = p.taut, p.grounded, p.drive
+        if what == "start ends":
+            drive = r.weight
+        elif what == "slack":
+            taut, u = False, 0.0
+        elif what == "taut":
+            taut, u = True, 0.0
+        elif what == "lift-off":
+            grounded, u, t_lift = False, r.weight / r.c, t
+        elif what == "touch-down":  # the load stops on the ground; the drive goes on
+            grounded, du, y, vy = True, du + vy, 0.0, 0.0
+        if what != "horizon":
+            events.append((t, what))
+        p = RopePiece(t, t, taut, grounded, drive, u, du, y, vy)
+    return RopeHistory(pieces, events, t, False)
+
+
+def _piece_peak(r: RopeScene, p: RopePiece) -> tuple[float, float]:
+    """(time, rope force) of the first maximum of the force over a piece."""
+    if not p.taut:
+        return p.t0, 0.0
+    span = p.t1 - p.t0
+    w, centre = _frequency(r, p), _centre(r, p)
+    a, b = p.u - centre, p.du / w
+    crest = (math.atan2(b, a) % (2.0 * math.pi)) / w  # first τ where u = centre + amplitude
+    candidates = [0.0, span] + ([crest] if crest <= span else [])
+    forces = [r.c * float(_stretch(r, p, tau)[0]) for tau in candidates]
+    best = max(range(len(candidates)), key=lambda j: (forces[j], -candidates[j]))
+    return p.t0 + candidates[best], forces[best]
+
+
+def rope_peak(history: RopeHistory, r: RopeScene) -> tuple[float, float]:
+    """(time, force) of the largest rope force over the horizon, its first occurrence
+    (during a long start the same crest comes back every period)."""
+    peaks = [_piece_peak(r, p) for p in history.pieces]
+    top = max(f for _, f in peaks)
+    return next((t, f) for t, f in peaks if f >= top * (1.0 - 1e-12))
+
+
+def charts(result: Result) -> list[Chart]:
+    """``--plot``: with a [rope] section, the rope dynamic factor ψ = F/G against time
+    at the start, load hanging and load lying on the ground, from the exact piecewise
+    solution of the two-mass model (:func:`rope_history`) -- the closed forms
+    (7.92)-(7.98) phase by phase, including the slack rope and lift-off; with the
+    reported ψ, the static ψ = 1 and the time of the peak. [] for a scene without a
+    rope (the uniform start has no curve worth a chart) or without an answer."""
+    if result.status != "ok" or result.rope is None:
+        return []
+    if result.rope_hanging is None or result.rope_ground is None:
+        return []
+    r = result.rope
+    return [
+        _rope_chart(r, result.rope_hanging, hanging=True),
+        _rope_chart(r, result.rope_ground, hanging=False),
+    ]
+
+
+def _rope_chart(r: RopeScene, table: MethodsTable, hanging: bool) -> Chart:
+    import numpy as np
+
+    from mdcalc.plot import Chart, Mark, Series
+
+    history = rope_history(r, hanging)
+    t_peak, f_peak = rope_peak(history, r)
+    period = 2.0 * math.pi / r.beta
+    lifts = [t for t, what in history.events if what == "lift-off"]
+    first = 0.0 if hanging or not lifts else lifts[0]
+    shown = history.horizon
+    if shown > CHART_PERIODS * period:
+        shown = min(shown, max(first, t_peak) + CHART_WINDOW_PERIODS * period)
+    times: list[float] = []
+    forces: list[float] = []
+    for p in history.pieces:
+        if p.t0 > shown:
+            break
+        span = min(p.t1, shown) - p.t0
+        if p.taut:
+            count = math.ceil(span / (2.0 * math.pi / _frequency(r, p)) * CHART_SAMPLES_PER_PERIOD)
+            tau = np.linspace(0.0, span, max(count, 1) + 1)
+            if p.t0 <= t_peak <= p.t0 + span:
+                tau = np.union1d(tau, [t_peak - p.t0])
+            force = r.c * np.asarray(_stretch(r, p, tau)[0])
+        else:
+            tau, force = np.array([0.0, span]), np.zeros(2)
+        start = 1 if times else 0  # a piece starts where the last one ended
+        times += (p.t0 + tau[start:]).tolist()
+        forces += force[start:].tolist()
+    psi = [f / r.weight for f in forces]
+    series = [Series("ψ(t), exact two-mass solution", times, psi)]
+    events = [(t, what) for t, what in history.events if t <= shown]
+    if r.slack > 0.0 and not hanging and events and events[0][1] == "taut":
+        t_taut = events.pop(0)[0]
+        series.append(Series(f"slack taken up, t = {t_taut:.4g} s", [t_taut], [0.0], "points"))
+    lifts_shown = [t for t, what in events if what == "lift-off"]
+    if not hanging and lifts_shown:
+        many = f" ({len(lifts_shown)}×)" if len(lifts_shown) > 1 else ""
+        label = f"load lifts off, t = {lifts_shown[0]:.4g} s{many}"
+        series.append(Series(label, lifts_shown, [1.0] * len(lifts_shown), "points"))
+    slack = [t for t, what in events if what in ("slack", "taut")]
+    if slack:
+        episodes = sum(1 for _, what in events if what == "slack")
+        if len(slack) == 2:
+            label = f"rope slack from {slack[0]:.4g} to {slack[1]:.4g} s"
+        else:
+            label = f"rope goes slack {episodes}× (first at {slack[0]:.4g} s)"
+        series.append(Series(label, slack, [0.0] * len(slack), "points"))
+    downs = [t for t, what in events if what == "touch-down"]
+    if downs:
+        label = f"load touches down, t = {downs[0]:.4g} s" + (
+            f" ({len(downs)}×)" if len(downs) > 1 else ""
+        )
+        series.append(Series(label, downs, [_psi_at(r, history, t) for t in downs], "points"))
+    if r.start_time <= shown:
+        t_p = r.start_time
+        series.append(
+            Series(f"start ends, t_p = {t_p:.4g} s", [t_p], [_psi_at(r, history, t_p)], "points")
+        )
+    scene = "load hanging" if hanging else "load lifting off the ground"
+    if r.slack > 0.0 and not hanging:
+        scene += f", {r.slack:g} m of slack"
+    title = f"Rope dynamic factor ψ = F/G at the start, {scene} (t_p = {r.start_time:.4g} s)"
+    if shown < history.horizon:
+        title += f"\nfirst {shown:.3g} s of {history.horizon:.4g} s "
+        title += f"({history.horizon / period:.3g} rope periods) shown"
+    if not history.complete:
+        title += f"\nstopped after {MAX_ROPE_PIECES} pieces (a chattering rope)"
+    reference = next(row for row in table.rows if row.reference)
+    reported = reference.values["dynamic_factor"]
+    assert reported is not None
+    peak = f_peak / r.weight
+    return Chart(
+        title,
+        "t [s]",
+        "ψ = F/G [-]",
+        series,
+        [
+            Mark("y", reported, f"reported ψ = {_psi_text(reported)} ({reference.method})"),
+            Mark("y", 1.0, "static, ψ = 1"),
+            Mark("x", t_peak, f"peak of the curve ψ = {_psi_text(peak)} at t = {t_peak:.4g} s"),
+        ],
+    )
+
+
+def _psi_text(psi: float) -> str:
+    """ψ to 5 digits, or as 1 + δ when it is within 1e-3 of 1 (a slow start)."""
+    if 0.0 < abs(psi - 1.0) < 1e-3:
+        return f"1 {'+' if psi > 1.0 else '−'} {abs(psi - 1.0):.4g}"
+    return f"{psi:.5g}"
+
+
+def _psi_at(r: RopeScene, history: RopeHistory, t: float) -> float:
+    for p in history.pieces:
+        if p.t0 <= t <= p.t1:
+            return r.c * max(float(_stretch(r, p, t - p.t0)[0]), 0.0) / r.weight
+    return 0.0
 
 
 # ------------------------------------------------------------------------- sweep
