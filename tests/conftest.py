@@ -74,3 +74,31 @@ def walk_finite(node: Any, where: str = "$") -> None:
     elif isinstance(node, list):
         for index, value in enumerate(node):
             walk_finite(value, f"{where}[{index}]")
+
+
+# ------------------------------------------------ the charts of --plot (tests/test_charts_*)
+
+
+def solved(path: Path) -> tuple[Any, Any, list[Any]]:
+    """A case file's solver result, report and charts."""
+    from mdcalc.casefile import read_case
+    from mdcalc.runner import solve_text
+
+    run = solve_text(read_case(path))
+    return run.result, run.report, run.module.charts(run.result)
+
+
+def chart(charts: list[Any], word: str) -> Any:
+    """The one chart whose title holds ``word``."""
+    found = [c for c in charts if word in c.title]
+    assert len(found) == 1, [c.title for c in charts]
+    return found[0]
+
+
+def series(c: Any, start: str) -> tuple[Any, Any]:
+    """x and y (numpy arrays) of the one series of chart ``c`` labelled ``start...``."""
+    import numpy as np
+
+    found = [s for s in c.series if s.label.startswith(start)]
+    assert len(found) == 1, [s.label for s in c.series]
+    return np.asarray(found[0].x, dtype=float), np.asarray(found[0].y, dtype=float)

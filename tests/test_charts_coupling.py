@@ -27,15 +27,7 @@ from typing import Any
 import numpy as np
 import pytest
 
-from tests.conftest import CASES
-
-
-def solved(path: Path) -> tuple[Any, Any, list[Any]]:
-    from mdcalc.casefile import read_case
-    from mdcalc.runner import solve_text
-
-    run = solve_text(read_case(path))
-    return run.result, run.report, run.module.charts(run.result)
+from tests.conftest import CASES, chart, series, solved
 
 
 def case(name: str) -> tuple[Any, Any, list[Any]]:
@@ -47,18 +39,6 @@ def written(tmp_path: Path, text: str) -> tuple[Any, Any, list[Any]]:
     path = tmp_path / "case.toml"
     path.write_text('problem = "coupling"\n' + text, encoding="utf-8")
     return solved(path)
-
-
-def chart(charts: list[Any], word: str) -> Any:
-    found = [c for c in charts if word in c.title]
-    assert len(found) == 1, [c.title for c in charts]
-    return found[0]
-
-
-def series(c: Any, start: str) -> tuple[np.ndarray, np.ndarray]:
-    found = [s for s in c.series if s.label.startswith(start)]
-    assert len(found) == 1, [s.label for s in c.series]
-    return np.asarray(found[0].x, dtype=float), np.asarray(found[0].y, dtype=float)
 
 
 def marks(c: Any, axis: str) -> dict[str, float]:

@@ -20,7 +20,7 @@ from typing import Any
 import numpy as np
 import pytest
 
-from tests.conftest import CASES
+from tests.conftest import CASES, chart
 
 
 def solved(path: Path) -> list[Any]:
@@ -35,12 +35,6 @@ def written(tmp_path: Path, text: str) -> list[Any]:
     path = tmp_path / "case.toml"
     path.write_text('problem = "resonance"\n' + text, encoding="utf-8")
     return solved(path)
-
-
-def chart(charts: list[Any], word: str) -> Any:
-    found = [c for c in charts if word in c.title]
-    assert len(found) == 1, [c.title for c in charts]
-    return found[0]
 
 
 def series(c: Any, start: str) -> tuple[list[float], list[float]]:

@@ -22,7 +22,7 @@ from typing import Any
 import numpy as np
 import pytest
 
-from tests.conftest import CASES
+from tests.conftest import CASES, chart, series
 
 
 def solved(path: Path) -> tuple[Any, list[Any]]:
@@ -41,18 +41,6 @@ def written(tmp_path: Path, text: str) -> list[Any]:
     path = tmp_path / "case.toml"
     path.write_text(text, encoding="utf-8")
     return solved(path)[1]
-
-
-def chart(charts: list[Any], word: str) -> Any:
-    found = [c for c in charts if word in c.title]
-    assert len(found) == 1, [c.title for c in charts]
-    return found[0]
-
-
-def series(c: Any, start: str) -> tuple[np.ndarray, np.ndarray]:
-    found = [s for s in c.series if s.label.startswith(start)]
-    assert len(found) == 1, [s.label for s in c.series]
-    return np.asarray(found[0].x, dtype=float), np.asarray(found[0].y, dtype=float)
 
 
 def at(x: np.ndarray, y: np.ndarray, where: float) -> float:
