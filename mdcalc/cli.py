@@ -158,7 +158,9 @@ def _check_outputs(case: Path, plot: Path | None, save: Path | None, force: bool
                 problems.append((path, missing))
         elif path.suffix.lower() not in suffixes:
             problems.append((path, f"{option}: use a file ending .toml"))
-        if path.exists() and not force:
+        if path.is_dir():
+            problems.append((path, f"{option}: is a folder; give a file name"))
+        elif path.exists() and not force:
             problems.append((path, f"{option}: the file exists; use --force to overwrite it"))
         elif path.resolve() == case.resolve():
             problems.append((path, f"{option}: would overwrite the case file itself"))

@@ -103,8 +103,11 @@ def render(charts: Sequence[Chart], path: Path, title: str = "") -> None:
     if title:
         figure.suptitle(title, fontsize=11)
     directory = path.parent if str(path.parent) else Path(".")
-    directory.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=path.suffix, dir=directory)
+    try:
+        directory.mkdir(parents=True, exist_ok=True)
+        fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=path.suffix, dir=directory)
+    except OSError as exc:
+        raise InputError(path, [Problem(f"--plot: cannot write: {exc.strerror}")]) from None
     os.close(fd)
     try:
         figure.savefig(tmp, format=path.suffix.lower().lstrip("."), dpi=120)

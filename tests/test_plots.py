@@ -173,3 +173,13 @@ def test_render_uses_agg_and_writes_atomically(tmp_path):
     width, height = png_size(out.read_bytes())
     assert png_size(one.read_bytes()) == (width, pytest.approx(height / 2, rel=0.1))
     assert sorted(p.name for p in out.parent.iterdir()) == ["c.png", "one.png"]
+
+
+def test_unwritable_and_folder_paths_are_input_errors(tmp_path, cli):
+    case = CASES / "coupling" / "example_8_1.toml"
+    folder = cli("coupling", case, "--plot", tmp_path)
+    assert folder.exit_code == 2 and "--plot: is a folder; give a file name" in folder.stderr
+    nowhere = cli("coupling", case, "--plot", "/proc/mdcalc-test/p.png")
+    assert nowhere.exit_code == 2, nowhere.stderr
+    assert "/proc/mdcalc-test/p.png: error: --plot: cannot write:" in nowhere.stderr
+    assert_no_traceback(nowhere)
