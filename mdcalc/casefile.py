@@ -150,7 +150,7 @@ def _with_quantities(
     except QuantityError as exc:
         problems.append(Problem(str(exc), dotted(loc), case.line_of(loc)))
         return value
-    if is_integer_field(model, loc):
+    if _leaves(info.annotation) - {type(None)} == {int}:  # int, int | None, list[int]
         if number != round(number):
             problems.append(
                 Problem(f"got {value!r} = {number:g}; expected a whole number", dotted(loc),
@@ -162,20 +162,18 @@ def _with_quantities(
     return number
 
 
+def _leaves(annotation: Any) -> set[Any]:
+    """The plain types inside an annotation (``list[int] | None`` -> {int, None})."""
+    args = getattr(annotation, "__args__", None)
+    if not args:
+        return {annotation}
+    return set().union(*(_leaves(arg) for arg in args))
+
+
 def _takes_numbers(annotation: Any) -> bool:
     """Does the field take numbers (``float``, ``int | None``, ``list[float]`` ...) and
     no strings?"""
-    leaves: set[Any] = set()
-
-    def collect(node: Any) -> None:
-        args = getattr(node, "__args__", None)
-        if args:
-            for arg in args:
-                collect(arg)
-        else:
-            leaves.add(node)
-
-    collect(annotation)
+    leaves = _leaves(annotation)
     return bool(leaves & {float, int}) and str not in leaves
 
 

@@ -41,17 +41,18 @@ def complete_case(incomplete: str) -> list[str]:
     """Shell completion of a case argument: folders and *.toml files."""
     import os
 
-    folder, _, stem = incomplete.rpartition("/")
-    base = folder + "/" if folder else ""
+    folder, slash, stem = incomplete.rpartition("/")
+    folder = folder or ("/" if slash else ".")  # "/e" lists the root, "e" this folder
+    base = incomplete[: len(incomplete) - len(stem)]
     try:
-        names = sorted(os.listdir(folder or "."))
+        names = sorted(os.listdir(folder))
     except OSError:
         return []
     out = []
     for name in names:
         if not name.startswith(stem) or (name.startswith(".") and not stem.startswith(".")):
             continue
-        if os.path.isdir(os.path.join(folder or ".", name)):
+        if os.path.isdir(os.path.join(folder, name)):
             out.append(f"{base}{name}/")
         elif name.endswith(".toml"):
             out.append(f"{base}{name}")
@@ -158,6 +159,11 @@ def _check_outputs(case: Path, plot: Path | None, save: Path | None, force: bool
                 problems.append((path, missing))
         elif path.suffix.lower() not in suffixes:
             problems.append((path, f"{option}: use a file ending .toml"))
+        try:
+            path.exists()
+        except OSError as exc:  # a name too long, say
+            problems.append((path, f"{option}: cannot use this path: {exc.strerror}"))
+            continue
         if path.is_dir():
             problems.append((path, f"{option}: is a folder; give a file name"))
         elif path.exists() and not force:

@@ -49,6 +49,8 @@ _ADDED = (
 )
 
 _NAME = re.compile(r"[^\W\d]\w*")
+#: Two numbers side by side ("18 609.2"), which pint would multiply.
+_SPLIT_NUMBER = re.compile(r"(?<![\w.])[-+]?\d[\d.]*(?:[eE][-+]?\d+)?\s+[-+]?\.?\d")
 _POWER_OP = re.compile(r"\*\*|\^")
 #: A power with a plain exponent, not itself raised to a power (10**10**10 is refused).
 _PLAIN_POWER = re.compile(r"(?:\*\*|\^)\s*([-+]?(?:\d+(?:\.\d*)?|\.\d+))(?![\w.(]|\s*(?:\*\*|\^))")
@@ -137,6 +139,12 @@ def _screen(text: str) -> None:
     """Refuse what pint would take wrongly or take long over, before it sees it."""
     if len(text) > _MAX_LENGTH:
         raise QuantityError(f"a quantity string of {len(text)} characters; at most {_MAX_LENGTH}")
+    if _SPLIT_NUMBER.search(text) or any(c in text for c in ",;[]{}"):
+        # pint reads "18 609.2" as 18 × 609.2 and "2,5" as 25: refuse, do not guess.
+        raise QuantityError(
+            f"got {text!r}; write one number without spaces or commas, with a decimal "
+            "point (18609.2, not 18 609.2 or 18609,2), then the unit"
+        )
     for name in _NAME.findall(text):
         if name in AMBIGUOUS:
             raise QuantityError(f"got {text!r}; {AMBIGUOUS[name]}")

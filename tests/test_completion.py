@@ -73,3 +73,12 @@ def test_show_completion_prints_a_script_for_the_calling_shell(shell):
 
 def test_help_offers_install_completion():
     assert "--install-completion" in run_script("--help").stdout
+
+
+def test_an_absolute_path_completes_from_the_root():
+    from mdcalc.cli import complete_case
+
+    assert complete_case("/") == []  # folders only: left to the shell
+    top = next(p for p in (ROOT / "cases").iterdir() if p.suffix == "" and p.is_dir())
+    found = complete_case(str(top) + "/")
+    assert found and all(f.startswith(str(top) + "/") for f in found)

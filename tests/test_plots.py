@@ -183,3 +183,10 @@ def test_unwritable_and_folder_paths_are_input_errors(tmp_path, cli):
     assert nowhere.exit_code == 2, nowhere.stderr
     assert "/proc/mdcalc-test/p.png: error: --plot: cannot write:" in nowhere.stderr
     assert_no_traceback(nowhere)
+
+
+def test_a_path_too_long_is_an_input_error(tmp_path, cli):
+    long = tmp_path / ("p" * 300 + ".png")
+    result = cli("coupling", CASES / "coupling" / "example_8_1.toml", "--plot", long)
+    assert result.exit_code == 2, result.stderr
+    assert "cannot use this path" in result.stderr

@@ -54,7 +54,7 @@ def test_radians_are_not_dimensionless():
     with pytest.raises(QuantityError, match="per angle"):
         convert("52.5 N*m", "N·m/rad")
     with pytest.raises(QuantityError, match="holds an angle"):
-        convert("50 1/s", "rad/s")
+        convert("50 /s", "rad/s")
     with pytest.raises(QuantityError, match="holds an angle"):
         convert("0.3 rad", "-")
 
@@ -102,6 +102,11 @@ def test_ps_is_the_metric_horsepower_not_petasiemens():
     ("text", "unit", "match"),
     [
         ("abc", "m", "unknown unit 'abc'"),
+        # pint would read these as 18 × 609.2 kN·m/rad, 25 m and 0 N·m: refused.
+        ("18 609.2 kN*m/rad", "N·m/rad", "without spaces or commas"),
+        ("2,5 m", "m", "without spaces or commas"),
+        ("12 000 N*m", "N·m", "without spaces or commas"),
+        ("[1, 2] m", "m", "without spaces or commas"),
         ("5 furlongz", "m", "unknown unit"),
         ("", "m", "not a quantity"),
         ("__import__('os') m", "m", "not a quantity"),
@@ -255,3 +260,17 @@ def test_sweep_over_a_key_written_with_a_unit(cli, tmp_path):
         columns["coupling.driving_inertia"], columns["natural_frequency"], strict=True
     ):
         assert beta == pytest.approx(math.sqrt(c * (1.0 / j1 + 1.0 / 4.0)), rel=1e-12)
+
+
+def test_integer_list_items_take_quantity_strings(cli, write_case):
+    from mdcalc.casefile import CaseText, validate
+    from mdcalc.problems import PROBLEMS
+
+    module = PROBLEMS["resonance"].load()
+    import tomllib
+
+    data = tomllib.loads((CASES / "resonance" / "inline_six.toml").read_text(encoding="utf-8"))
+    cranks = data["chain"]["cranks"]
+    data["chain"]["cranks"] = [str(cranks[0]), *cranks[1:]]
+    case = validate(module.Case, CaseText(CASES / "x.toml", "", data))
+    assert list(case.chain.cranks) == cranks
