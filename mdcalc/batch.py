@@ -1,32 +1,22 @@
 """Batch runs: many case files through a process pool (``mdcalc run``, ``check --jobs``).
 
-Workers are forked from a parent that has already imported the shared machinery
-(pydantic, the case reader, the report); each worker imports a problem's module the
-first time one of its files comes up, so imports are paid once per worker, not per
-file. Each file's outcome comes
-back as text (a JSON line or a rendered report); the parent writes it in input order,
-so a run's output does not depend on the number of jobs. One bad file is reported and
+The pool and the file list are :mod:`mdcalc.pool`'s. Each file's outcome comes back
+as text (a JSON line or a rendered report); the parent writes it in input order, so
+a run's output does not depend on the number of jobs. One bad file is reported and
 the rest run on.
 """
 
 from __future__ import annotations
 
 import json
-import multiprocessing
-import os
 import time
 import traceback
-from collections.abc import Callable, Iterable, Iterator, Sequence
-from concurrent.futures import ProcessPoolExecutor
+from collections.abc import Iterable
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TypeVar
 
 from mdcalc import __version__
-from mdcalc.errors import EXIT_BUG, EXIT_INPUT, EXIT_NO_ANSWER, EXIT_OK, InputError, Problem
-
-T = TypeVar("T")
-R = TypeVar("R")
+from mdcalc.errors import EXIT_BUG, EXIT_INPUT, EXIT_NO_ANSWER, EXIT_OK, InputError
 
 #: Worse outcomes first: the exit code of a batch is the worst of its files'.
 SEVERITY = (EXIT_BUG, EXIT_INPUT, EXIT_NO_ANSWER, EXIT_OK)
@@ -41,83 +31,6 @@ STATUS_OF_EXIT = {
 def worst_exit(codes: Iterable[int]) -> int:
     seen = set(codes)
     return next((code for code in SEVERITY if code in seen), EXIT_OK)
-
-
-# ------------------------------------------------------------------------- files
-
-
-@dataclass(frozen=True)
-class CaseFile:
-    path: Path
-    #: Where its result goes under ``--out DIR``: the file's path inside the folder it
-    #: was found in (so cases/a/x.toml and cases/b/x.toml do not collide), .json.
-    out_name: Path
-
-
-def collect(paths: Iterable[Path], outputs: bool = False) -> list[CaseFile]:
-    """Files as given, folders searched recursively for ``*.toml`` (sorted).
-
-    With ``outputs``, two files that would write the same result file are an error.
-    """
-    files: list[CaseFile] = []
-    for path in paths:
-        if path.is_dir():
-            for found in sorted(p for p in path.rglob("*.toml") if p.is_file()):
-                files.append(CaseFile(found, found.relative_to(path).with_suffix(".json")))
-        else:
-            files.append(CaseFile(path, Path(path.name).with_suffix(".json")))
-    names: dict[Path, Path] = {}
-    clashes = []
-    for case in files:
-        other = names.setdefault(case.out_name, case.path)
-        if other != case.path:
-            clashes.append(Problem(f"{other} and {case.path} would both write {case.out_name}"))
-    if clashes and outputs:
-        raise InputError("mdcalc run --out", clashes)
-    return files
-
-
-# ------------------------------------------------------------------------- the pool
-
-
-def default_jobs(count: int) -> int:
-    """One process per core, never more than the files; in-process for one file."""
-    return max(1, min(os.cpu_count() or 1, count))
-
-
-def warm() -> None:
-    """Import what every worker needs, once, before the workers are forked."""
-    import mdcalc.check  # noqa: F401
-    import mdcalc.model  # noqa: F401
-    import mdcalc.report  # noqa: F401
-    import mdcalc.runner  # noqa: F401
-
-
-def pool_map(
-    func: Callable[[T], R], items: Sequence[T], jobs: int, on_done: Callable[[], None] | None = None
-) -> Iterator[R]:
-    """``map(func, items)`` in input order, over ``jobs`` processes (in-process for 1)."""
-    if jobs <= 1 or len(items) <= 1:
-        for item in items:
-            yield func(item)
-            if on_done is not None:
-                on_done()
-        return
-    warm()
-    methods = multiprocessing.get_all_start_methods()
-    context = multiprocessing.get_context("fork" if "fork" in methods else None)
-    # Chunks amortise the round trips of small, fast cases; four per worker keep the
-    # load balanced when a few cases are slow.
-    chunksize = max(1, min(64, len(items) // (jobs * 4)))
-    with ProcessPoolExecutor(max_workers=jobs, mp_context=context) as pool:
-        try:
-            for result in pool.map(func, items, chunksize=chunksize):
-                yield result
-                if on_done is not None:
-                    on_done()
-        except BaseException:
-            pool.shutdown(wait=False, cancel_futures=True)
-            raise
 
 
 # ------------------------------------------------------------------------- one file

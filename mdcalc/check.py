@@ -12,6 +12,8 @@ from pathlib import Path
 from mdcalc.casefile import read_case
 from mdcalc.errors import InputError
 from mdcalc.model import CaseBase, Expectation
+from mdcalc.pool import collect as collect_cases
+from mdcalc.pool import pool_map
 from mdcalc.report import Value, format_value
 from mdcalc.runner import run_text
 
@@ -47,8 +49,6 @@ class CheckOutcome:
 def collect(paths: Iterable[Path]) -> list[Path]:
     """Files as given; folders searched recursively for ``*.toml``, in sorted order
     (the file list of ``mdcalc run``)."""
-    from mdcalc.batch import collect as collect_cases
-
     return [case.path for case in collect_cases(paths)]
 
 
@@ -126,6 +126,4 @@ def merge(outcomes: Iterable[CheckOutcome]) -> CheckOutcome:
 
 def check_paths(paths: Iterable[Path], jobs: int = 1) -> CheckOutcome:
     """Check every case file under ``paths``; ``jobs`` processes (results in file order)."""
-    from mdcalc.batch import pool_map
-
     return merge(pool_map(check_one, collect(paths), jobs))

@@ -272,8 +272,8 @@ def check_command(
     def body() -> int:
         from rich.table import Table
 
-        from mdcalc.batch import default_jobs
         from mdcalc.check import check_paths, collect
+        from mdcalc.pool import default_jobs
 
         outcome = check_paths(paths, jobs or default_jobs(len(collect(paths))))
         table = Table(title="mdcalc check", title_justify="left")
@@ -328,16 +328,9 @@ def run_command(
         import time
         from collections import Counter
 
-        from mdcalc.batch import (
-            STATUS_OF_EXIT,
-            FileRunner,
-            RunOptions,
-            collect,
-            default_jobs,
-            pool_map,
-            worst_exit,
-        )
+        from mdcalc.batch import STATUS_OF_EXIT, FileRunner, RunOptions, worst_exit
         from mdcalc.casefile import write_text_atomic
+        from mdcalc.pool import collect, default_jobs, pool_map
 
         files = collect(paths, outputs=out is not None)
         if not files:
@@ -423,7 +416,7 @@ def sweep_command(
     """
 
     def body() -> int:
-        from mdcalc.batch import default_jobs
+        from mdcalc.pool import default_jobs
         from mdcalc.sweep import evaluate, parse_vary, plan, to_csv, to_json
 
         if out is not None and out.suffix.lower() not in (".csv", ".json"):

@@ -10,7 +10,7 @@ squaring it would overflow inside a solver. Field descriptions end with the unit
 
 from __future__ import annotations
 
-from typing import Any
+from typing import Any, get_args
 
 from pydantic import (
     BaseModel,
@@ -106,3 +106,32 @@ def exactly_one(owner: str, **given: object) -> None:
     if len(named) != 1:
         keys = " or ".join(given)
         raise ValueError(f"give exactly one of {keys} in [{owner}] (got {len(named)})")
+
+
+def with_values(case: CaseBase, values: dict[str, Any]) -> Any:
+    """The case with each key path of ``values`` (``"vehicle.mass"``,
+    ``"drive.stage_efficiencies.1"``) set to its value, copied on the way and not
+    validated, so that a value may be a numpy array over a sweep's grid and the
+    problem's own scene formulas run on it (the sweep has validated the grid's
+    corners). A section the case does not have is built from its defaults."""
+    for key, value in values.items():
+        case = _with_value(case, type(case), key.split("."), value)
+    return case
+
+
+def _with_value(node: Any, kind: Any, parts: list[str], value: Any) -> Any:
+    if not parts:
+        return value
+    head, rest = parts[0], parts[1:]
+    if isinstance(node, list):
+        i = int(head)
+        return [*node[:i], _with_value(node[i], None, rest, value), *node[i + 1 :]]
+    if node is None:  # an optional section the grid adds: its defaults, then the value
+        node = next(t for t in (kind, *get_args(kind)) if _is_model(t)).model_construct()
+    annotation = type(node).model_fields[head].annotation
+    child = _with_value(getattr(node, head), annotation, rest, value)
+    return node.model_copy(update={head: child})
+
+
+def _is_model(kind: Any) -> bool:
+    return isinstance(kind, type) and issubclass(kind, BaseModel)

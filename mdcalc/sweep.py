@@ -313,7 +313,7 @@ def evaluate(
         status = np.zeros(sweep.points, dtype=int)
         return Table(keys + wanted, units, columns, status, vectorized=True)
 
-    from mdcalc.batch import pool_map
+    from mdcalc.pool import pool_map
 
     path = str(sweep.case.path)
     tasks = [(path, sweep.problem, sweep.data_at(point)) for point in sweep.grid()]

@@ -374,7 +374,7 @@ def _close(got: float, want: float, scale: float) -> bool:
 
 
 def _check_constant_force(rows: list[tuple[float, float, float, float, float | None]]) -> None:
-    from mdcalc.core.motion import constant_force_phase, constant_force_phase_array
+    from mdcalc.core.motion import constant_force_phase
 
     # One call for the rows run to the stop (duration None applies to a whole call),
     # one for the timed rows (an array of durations).
@@ -385,7 +385,7 @@ def _check_constant_force(rows: list[tuple[float, float, float, float, float | N
         v0, force, drag, mass, duration = (
             np.array(c, dtype=float) for c in zip(*chosen, strict=True)
         )
-        arrays = constant_force_phase_array(v0, force, drag, mass, duration if timed else None)
+        arrays = constant_force_phase(v0, force, drag, mass, duration if timed else None)
         for index, row in enumerate(chosen):
             want = constant_force_phase(*row)
             scale = row[0] * (1.0 + (row[4] or 0.0))
@@ -433,10 +433,10 @@ def ramp_rows(draw: Any) -> tuple[float, float, float, float, float]:
 @example(rows=[(2.0, 150.0, 0.0, 1000.0, 30.0)])  # no rise: uniform, stops inside
 @example(rows=[(0.0, 150.0, 8000.0, 1000.0, 3.0), (5.0, 150.0, 8000.0, 1000.0, 0.0)])  # idle
 def test_ramp_phase_array_equals_the_scalar(rows):
-    from mdcalc.core.motion import ramp_phase, ramp_phase_array
+    from mdcalc.core.motion import ramp_phase
 
     v0, base, rise, mass, duration = (np.array(c, dtype=float) for c in zip(*rows, strict=True))
-    arrays = ramp_phase_array(v0, base, rise, mass, duration)
+    arrays = ramp_phase(v0, base, rise, mass, duration)
     for index, row in enumerate(rows):
         want = ramp_phase(*row)
         got = (arrays.speed[index], arrays.distance[index], arrays.time[index])

@@ -3,8 +3,10 @@
 The oscillator is x'' + 2·ζ·β·x' + β²·x = β²·f(t), so ``f`` is the load in units
 of the static response (F/k, or M/c for a torsional spring) and x/f is the dynamic
 factor. β is the undamped natural frequency [rad/s], ζ the damping ratio.
-Everything here is pure Python (no numpy): closed forms, and the exact response to
-piecewise-linear loads (the Duhamel integral evaluated exactly step by step).
+The closed forms take floats or numpy arrays alike (:mod:`mdcalc.core.xp`): a single
+scene stays pure Python (no numpy import), a sweep's kernel passes its grid through
+the same formula. The exact response to piecewise-linear loads (the Duhamel
+integral evaluated exactly step by step) is pure Python.
 """
 
 from __future__ import annotations
@@ -12,9 +14,12 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import Any
+
+from mdcalc.core.xp import of
 
 
-def rectangular_pulse_peak(beta: float, duration: float) -> float:
+def rectangular_pulse_peak(beta: Any, duration: Any) -> Any:
     """Peak response to a rectangular force pulse, in units of its static response.
 
     x'' + β²·x = F/m for 0 < t < T, then 0, from rest (seed 000 (7.92)-(7.96)):
@@ -22,80 +27,93 @@ def rectangular_pulse_peak(beta: float, duration: float) -> float:
     free vibration has amplitude 2·|sin(β·T/2)|. So the maximum over all time is
     2 when T ≥ π/β, else 2·sin(β·T/2).
     """
-    if beta * duration >= math.pi:
-        return 2.0
-    return 2.0 * math.sin(0.5 * beta * duration)
+    xp = of(beta, duration)
+    return xp.where(
+        beta * duration >= math.pi, lambda: 2.0, lambda: 2.0 * xp.sin(0.5 * beta * duration)
+    )
 
 
 # ------------------------------------------------------------------ step load
 
 
-def damped_frequency(beta: float, zeta: float) -> float:
+def damped_frequency(beta: Any, zeta: Any) -> Any:
     """β₁ = β·√(1 - ζ²) [rad/s]; 0 at and above critical damping."""
-    return beta * math.sqrt(1.0 - zeta * zeta) if zeta < 1.0 else 0.0
+    xp = of(beta, zeta)
+    return xp.where(zeta < 1.0, lambda: beta * xp.sqrt(1.0 - zeta * zeta), lambda: 0.0)
 
 
-def step_response(t: float, beta: float, zeta: float) -> float:
+def step_response(t: Any, beta: Any, zeta: Any) -> Any:
     """x/x_st after a suddenly applied constant load, from rest (all damping regimes)."""
-    if t <= 0.0:
-        return 0.0
+    xp = of(t, beta, zeta)
     decay = zeta * beta
-    if zeta < 1.0:
+
+    def under() -> Any:
         b1 = damped_frequency(beta, zeta)
-        return 1.0 - math.exp(-decay * t) * (math.cos(b1 * t) + decay / b1 * math.sin(b1 * t))
-    if zeta == 1.0:
-        return 1.0 - math.exp(-beta * t) * (1.0 + beta * t)
-    root = beta * math.sqrt(zeta * zeta - 1.0)
-    # 1 - e^{-ζβt}·(cosh(rt) + ζβ/r·sinh(rt)), written with decaying exponentials only.
-    slow, fast = decay - root, decay + root
-    return 1.0 - (fast * math.exp(-slow * t) - slow * math.exp(-fast * t)) / (2.0 * root)
+        return 1.0 - xp.exp(-decay * t) * (xp.cos(b1 * t) + decay / b1 * xp.sin(b1 * t))
+
+    def critical() -> Any:
+        return 1.0 - xp.exp(-beta * t) * (1.0 + beta * t)
+
+    def over() -> Any:
+        root = beta * xp.sqrt(zeta * zeta - 1.0)
+        # 1 - e^{-ζβt}·(cosh(rt) + ζβ/r·sinh(rt)), written with decaying exponentials only.
+        slow, fast = decay - root, decay + root
+        return 1.0 - (fast * xp.exp(-slow * t) - slow * xp.exp(-fast * t)) / (2.0 * root)
+
+    def moving() -> Any:
+        return xp.where(zeta < 1.0, under, lambda: xp.where(zeta == 1.0, critical, over))
+
+    return xp.where(t <= 0.0, lambda: 0.0, moving)
 
 
-def step_peak(zeta: float) -> float:
+def step_peak(zeta: Any) -> Any:
     """Dynamic factor of a suddenly applied load: the first (largest) peak of
     :func:`step_response`, 1 + exp(-π·ζ/√(1 - ζ²)); exactly 2 undamped, 1 from
     critical damping on (no overshoot)."""
-    if zeta >= 1.0:
-        return 1.0
-    return 1.0 + math.exp(-math.pi * zeta / math.sqrt(1.0 - zeta * zeta))
+    xp = of(zeta)
+    return xp.where(
+        zeta >= 1.0,
+        lambda: 1.0,
+        lambda: 1.0 + xp.exp(-math.pi * zeta / xp.sqrt(1.0 - zeta * zeta)),
+    )
 
 
-def step_peak_time(beta: float, zeta: float) -> float | None:
-    """Time of that first peak, π/β₁; None without overshoot."""
-    if zeta >= 1.0:
-        return None
-    return math.pi / damped_frequency(beta, zeta)
+def step_peak_time(beta: Any, zeta: Any) -> Any:
+    """Time of that first peak, π/β₁; None without overshoot (nan in an array)."""
+    xp = of(beta, zeta)
+    return xp.where(zeta >= 1.0, lambda: xp.missing, lambda: math.pi / damped_frequency(beta, zeta))
 
 
-def step_envelope(t: float, beta: float, zeta: float) -> float:
+def step_envelope(t: Any, beta: Any, zeta: Any) -> Any:
     """Upper envelope of the step response, 1 + e^(-ζ·β·t) (seed 000 §8.1)."""
-    return 1.0 + math.exp(-zeta * beta * t)
+    return 1.0 + of(t, beta, zeta).exp(-zeta * beta * t)
 
 
 # ------------------------------------------------------------- harmonic load
 
 
-def magnification(ratio: float, zeta: float) -> float:
-    """Steady amplitude over static, 1/√((1 - r²)² + (2ζr)²), r = ω/β; math.inf at
+def magnification(ratio: Any, zeta: Any) -> Any:
+    """Steady amplitude over static, 1/√((1 - r²)² + (2ζr)²), r = ω/β; inf at
     undamped resonance (the caller says "unbounded")."""
-    denominator = math.hypot(1.0 - ratio * ratio, 2.0 * zeta * ratio)
-    return math.inf if denominator == 0.0 else 1.0 / denominator
+    xp = of(ratio, zeta)
+    denominator = xp.hypot(1.0 - ratio * ratio, 2.0 * zeta * ratio)
+    return xp.where(denominator == 0.0, lambda: math.inf, lambda: 1.0 / denominator)
 
 
-def phase_lag(ratio: float, zeta: float) -> float:
+def phase_lag(ratio: Any, zeta: Any) -> Any:
     """Phase of the steady response behind the load [rad], in [0, π]."""
-    return math.atan2(2.0 * zeta * ratio, 1.0 - ratio * ratio)
+    return of(ratio, zeta).atan2(2.0 * zeta * ratio, 1.0 - ratio * ratio)
 
 
-def transmissibility(ratio: float, zeta: float) -> float:
+def transmissibility(ratio: Any, zeta: Any) -> Any:
     """Force passed to the support over the exciting force, √(1 + (2ζr)²)·magnification."""
-    return math.hypot(1.0, 2.0 * zeta * ratio) * magnification(ratio, zeta)
+    return of(ratio, zeta).hypot(1.0, 2.0 * zeta * ratio) * magnification(ratio, zeta)
 
 
 def resonance_peak(zeta: float) -> tuple[float, float]:
     """(r, magnification) at the peak of the amplitude curve: r = √(1 - 2ζ²) and
     1/(2ζ·√(1 - ζ²)); for ζ ≥ 1/√2 the curve falls from r = 0 (peak 1 there).
-    Undamped: (1, inf)."""
+    Undamped: (1, inf). Floats only (a pair of regimes, not a grid)."""
     if zeta == 0.0:
         return 1.0, math.inf
     if 2.0 * zeta * zeta >= 1.0:

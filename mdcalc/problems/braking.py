@@ -22,8 +22,9 @@ from pydantic import Field, model_validator
 from mdcalc.core.motion import Phase, constant_force_phase, ramp_phase
 from mdcalc.core.ode import IMPORTS as ODE_IMPORTS
 from mdcalc.core.units import STANDARD_GRAVITY
+from mdcalc.core.xp import of
 from mdcalc.methods import Method, compare
-from mdcalc.model import CaseBase, CaseModel, exactly_one
+from mdcalc.model import CaseBase, CaseModel, exactly_one, with_values
 from mdcalc.report import (
     Column,
     MethodQuantity,
@@ -176,7 +177,7 @@ def scene_of(case: Case) -> Scene:
         phi=phi,
         psi=case.road.resistance,
         demand=demand,
-        brake_force=min(demand, adhesion_force),
+        brake_force=of(demand, adhesion_force).minimum(demand, adhesion_force),
         drag=case.drag.factor if case.drag is not None else 0.0,
         reaction_time=driver.reaction_time,
         build_up_time=driver.build_up_time,
@@ -205,6 +206,12 @@ def exact_stop(scene: Scene) -> Stop:
     """Piecewise closed form; exact unless drag acts during a build-up phase."""
     if scene.drag > 0.0 and scene.build_up_time > 0.0:
         raise ValueError("no closed form for the build-up phase with drag")
+    return piecewise_stop(scene)
+
+
+def piecewise_stop(scene: Scene) -> Stop:
+    """Reaction, build-up and braking phases by their closed forms; floats, or arrays
+    over a sweep's grid (where the caller has ruled out drag during a build-up)."""
     reaction = constant_force_phase(
         scene.v0, scene.road_force, scene.drag, scene.mass, scene.reaction_time
     )
@@ -215,6 +222,24 @@ def exact_stop(scene: Scene) -> Stop:
         build_up.speed, scene.road_force + scene.brake_force, scene.drag, scene.mass, None
     )
     return Stop(reaction, build_up, braking)
+
+
+def derived(scene: Scene) -> dict[str, Any]:
+    """The report's quantities that follow from the scene by a formula, by key; floats,
+    or arrays over a sweep's grid."""
+    demanded_a = scene.demand / scene.mass
+    adhesion_a = scene.phi * scene.g
+    lecture = lecture_stop(replace(scene, reaction_time=0.0, build_up_time=0.0))
+    return {
+        "demanded_deceleration": demanded_a,
+        "demanded_deceleration_g": demanded_a / scene.g,
+        "lecture_time": lecture["stopping_time"],
+        "lecture_distance": lecture["stopping_distance"],
+        "adhesion_deceleration": adhesion_a,
+        "adhesion_limited_time": scene.v0 / adhesion_a,
+        "adhesion_limited_distance": scene.v0**2 / (2.0 * adhesion_a),
+        "deceleration": (scene.brake_force + scene.road_force) / scene.mass,
+    }
 
 
 def lecture_stop(scene: Scene) -> dict[str, float]:
@@ -375,8 +400,7 @@ def surface_table(scene: Scene) -> list[list[Any]]:
 def report(result: Result) -> Report:
     case, scene = result.case, result.scene
     title = case.title or "Braking"
-    demanded_a = scene.demand / scene.mass
-    adhesion_a = scene.phi * scene.g
+    d = derived(scene)
     lock = scene.demand > scene.phi * scene.mass * scene.g
     road_label = case.road.surface or "given adhesion"
 
@@ -397,45 +421,45 @@ def report(result: Result) -> Report:
     sections: list[Any] = [given]
     notes: list[Note] = []
     if case.brakes is not None:
-        lecture = lecture_stop(replace(scene, reaction_time=0.0, build_up_time=0.0))
         sections.append(
             Quantities(
                 "Lecture method (7.48): constant force, no resistance",
                 [
                     Quantity("brake_force_demanded", "Brake force demanded P_T", scene.demand, "N"),
                     Quantity(
-                        "demanded_deceleration", "Deceleration demanded P_T/m", demanded_a, "m/s²"
+                        "demanded_deceleration",
+                        "Deceleration demanded P_T/m",
+                        d["demanded_deceleration"],
+                        "m/s²",
                     ),
                     Quantity(
                         "demanded_deceleration_g",
                         "Deceleration demanded",
-                        demanded_a / scene.g,
+                        d["demanded_deceleration_g"],
                         "g",
                     ),
-                    Quantity(
-                        "lecture_time", "Braking time t = V0·m/P_T", lecture["stopping_time"], "s"
-                    ),
+                    Quantity("lecture_time", "Braking time t = V0·m/P_T", d["lecture_time"], "s"),
                     Quantity(
                         "lecture_distance",
                         "Braking distance S = V0²·m/(2·P_T)",
-                        lecture["stopping_distance"],
+                        d["lecture_distance"],
                         "m",
                     ),
                 ],
             )
         )
     adhesion_items = [
-        Quantity("adhesion_deceleration", "Adhesion limit φ·g", adhesion_a, "m/s²"),
+        Quantity("adhesion_deceleration", "Adhesion limit φ·g", d["adhesion_deceleration"], "m/s²"),
         Quantity(
             "adhesion_limited_time",
             "Time at the adhesion limit V0/(φ·g)",
-            scene.v0 / adhesion_a,
+            d["adhesion_limited_time"],
             "s",
         ),
         Quantity(
             "adhesion_limited_distance",
             "Distance at the adhesion limit V0²/(2·φ·g)",
-            scene.v0**2 / (2.0 * adhesion_a),
+            d["adhesion_limited_distance"],
             "m",
         ),
     ]
@@ -455,7 +479,7 @@ def report(result: Result) -> Report:
         Quantity(
             "deceleration",
             "Deceleration, full braking (no drag)",
-            (scene.brake_force + scene.road_force) / scene.mass,
+            d["deceleration"],
             "m/s²",
         ),
     ]
@@ -539,95 +563,64 @@ SWEEP_KEYS = {
 
 
 def sweep(case: Case, grid: dict[str, Any]) -> dict[str, Any] | None:
-    """Every numeric result over a grid of scenes at once (numpy), by the closed
-    forms of :func:`solve`; None where the sweep needs the ODE (drag during a
-    build-up) or varies a key this form does not know."""
+    """Every numeric result over a grid of scenes at once (numpy): the case with the
+    grid's arrays in it goes through the same :func:`scene_of`, :func:`piecewise_stop`
+    and :func:`derived` as one scene. None where the sweep needs the ODE (drag during
+    a build-up) or varies a key this form does not know."""
     import numpy as np
-
-    from mdcalc.core.motion import constant_force_phase_array, ramp_phase_array
 
     if any(key not in SWEEP_KEYS for key in grid):
         return None
-    given = {SWEEP_KEYS[key]: np.asarray(values, dtype=float) for key, values in grid.items()}
-    base = scene_of(case)
-    brakes, drag, driver = case.brakes, case.drag, case.driver or Driver()
-
-    def pick(name: str, default: Any) -> Any:
-        return given.get(name, default)
-
-    mass, g = pick("mass", base.mass), pick("g", base.g)
-    v0 = pick("v0", base.v0)
-    if "v0_kmh" in given:
-        v0 = given["v0_kmh"] / 3.6
-    phi, psi = pick("phi", base.phi), pick("psi", base.psi)
-    if drag is not None:
-        k = 0.5 * (
-            pick("air_density", drag.air_density)
-            * pick("drag_coefficient", drag.drag_coefficient)
-            * pick("frontal_area", drag.frontal_area)
-        )
-    elif any(name in given for name in ("air_density", "drag_coefficient", "frontal_area")):
-        return None  # a drag section that the base case does not have
-    else:
-        k = 0.0
-    t_r = pick("reaction_time", driver.reaction_time)
-    t_b = pick("build_up_time", driver.build_up_time)
-    adhesion_force = phi * mass * g
-    # The brakes' kind is the base case's, or the one the grid adds (validation at the
-    # grid's corners has made sure there is exactly one).
-    if "force" in given or (brakes is not None and brakes.force is not None):
-        demand = pick("force", brakes.force if brakes is not None else None)
-    elif "deceleration" in given or (brakes is not None and brakes.deceleration is not None):
-        demand = mass * pick("deceleration", brakes.deceleration if brakes is not None else None)
-    elif "traction_force" in given or "force_multiple" in given or brakes is not None:
-        if brakes is None and not ("traction_force" in given and "force_multiple" in given):
-            return None
-        demand = pick("force_multiple", brakes and brakes.force_multiple) * pick(
-            "traction_force", brakes and brakes.traction_force
-        )
-    else:
-        demand = adhesion_force
-    has_brakes = brakes is not None or any(
-        name in given for name in ("force", "deceleration", "traction_force", "force_multiple")
+    sections = {key.partition(".")[0] for key in grid}
+    if "drag" in sections and case.drag is None:
+        return None  # a drag section the base case does not have: point by point
+    arrays = with_values(
+        case, {key: np.asarray(values, dtype=float) for key, values in grid.items()}
     )
-    mass, g, v0, phi, psi, k, t_r, t_b, demand, adhesion_force = np.broadcast_arrays(
-        mass, g, v0, phi, psi, k, t_r, t_b, demand, adhesion_force
-    )
-    if np.any((k > 0.0) & (t_b > 0.0)):
+    scene = scene_of(arrays)
+    shape = np.broadcast_shapes(*(np.shape(value) for value in vars(scene).values()))
+    grid_scene: dict[str, Any] = {k: np.broadcast_to(v, shape) for k, v in vars(scene).items()}
+    scene = Scene(**grid_scene)
+    if np.any((scene.drag > 0.0) & (scene.build_up_time > 0.0)):
         return None  # no closed form for the build-up with drag: point by point (ODE)
-    brake_force = np.minimum(demand, adhesion_force)
-    road_force = psi * mass * g
-    reaction = constant_force_phase_array(v0, road_force, k, mass, t_r)
-    build_up = ramp_phase_array(reaction.speed, road_force, brake_force, mass, t_b)
-    braking = constant_force_phase_array(build_up.speed, road_force + brake_force, k, mass, None)
-    lecture_time = v0 * mass / demand
-    adhesion_a = phi * g
+    stop = piecewise_stop(scene)
+    d = derived(scene)
     # As in the report: a quantity the scene does not show is missing (NaN) there.
-    none = np.full(v0.shape, np.nan)
-    brakes_only = (lambda values: values) if has_brakes else (lambda values: none)
-    driver_only = np.where((t_r > 0.0) | (t_b > 0.0), 1.0, np.nan)
+    none = np.full(shape, np.nan)
+    brakes_only = (lambda values: values) if arrays.brakes is not None else (lambda values: none)
+    driver_only = np.where((scene.reaction_time > 0.0) | (scene.build_up_time > 0.0), 1.0, np.nan)
     return {
-        "initial_speed": v0,
-        "initial_speed_kmh": v0 * 3.6,
-        "mass": mass,
-        "adhesion": phi,
-        "road_resistance": np.where(psi > 0.0, psi, np.nan),
-        "drag_factor": k if drag is not None else none,
-        "brake_force_demanded": brakes_only(demand),
-        "demanded_deceleration": brakes_only(demand / mass),
-        "demanded_deceleration_g": brakes_only(demand / mass / g),
-        "lecture_time": brakes_only(lecture_time),
-        "lecture_distance": brakes_only(0.5 * v0 * lecture_time),
-        "adhesion_deceleration": adhesion_a,
-        "adhesion_limited_time": v0 / adhesion_a,
-        "adhesion_limited_distance": v0**2 / (2.0 * adhesion_a),
-        "braking_force": brake_force,
-        "deceleration": (brake_force + road_force) / mass,
-        "reaction_distance": reaction.distance * driver_only,
-        "build_up_distance": build_up.distance * driver_only,
-        "braking_distance": braking.distance * driver_only,
-        "stopping_distance": reaction.distance + build_up.distance + braking.distance,
-        "stopping_time": reaction.time + build_up.time + braking.time,
+        "initial_speed": scene.v0,
+        "initial_speed_kmh": scene.v0 * 3.6,
+        "mass": scene.mass,
+        "adhesion": scene.phi,
+        "road_resistance": np.where(scene.psi > 0.0, scene.psi, np.nan),
+        "drag_factor": scene.drag if arrays.drag is not None else none,
+        "brake_force_demanded": brakes_only(scene.demand),
+        **{
+            key: brakes_only(d[key])
+            for key in (
+                "demanded_deceleration",
+                "demanded_deceleration_g",
+                "lecture_time",
+                "lecture_distance",
+            )
+        },
+        **{
+            key: d[key]
+            for key in (
+                "adhesion_deceleration",
+                "adhesion_limited_time",
+                "adhesion_limited_distance",
+            )
+        },
+        "braking_force": scene.brake_force,
+        "deceleration": d["deceleration"],
+        "reaction_distance": stop.reaction.distance * driver_only,
+        "build_up_distance": stop.build_up.distance * driver_only,
+        "braking_distance": stop.braking.distance * driver_only,
+        "stopping_distance": stop.distance,
+        "stopping_time": stop.time,
     }
 
 

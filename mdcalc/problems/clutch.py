@@ -22,11 +22,12 @@ exactly. All closed forms: no numpy, no scipy.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Any, Literal
 
 from pydantic import Field, model_validator
 
+from mdcalc.core.xp import of
 from mdcalc.methods import Method, NotApplicable, compare
 from mdcalc.model import CaseBase, CaseModel, FieldError
 from mdcalc.report import (
@@ -176,11 +177,14 @@ class Friction:
         return Friction(self.z1, self.z2, self.f1, self.f2, eta1, eta2)
 
 
-def gain_bound(fr: Friction) -> float:
-    """(26): C_max = π·S₀/[4·z₂f₂·S₁·(1 - η₂)]; inf for η₂ = 1."""
-    if fr.eta2 >= 1.0:
-        return math.inf
-    return math.pi * fr.static_sum / (4.0 * fr.z2 * fr.f2 * fr.sliding_sum * (1.0 - fr.eta2))
+def gain_bound(fr: Friction) -> Any:
+    """(26): C_max = π·S₀/[4·z₂f₂·S₁·(1 - η₂)]; inf for η₂ = 1. Floats, or arrays of
+    pair data over a sweep's grid."""
+    return of(*vars(fr).values()).where(
+        fr.eta2 >= 1.0,
+        lambda: math.inf,
+        lambda: math.pi * fr.static_sum / (4.0 * fr.z2 * fr.f2 * fr.sliding_sum * (1.0 - fr.eta2)),
+    )
 
 
 def gain_bound_one_material(z2: int, f: float, eta: float) -> float:
@@ -549,15 +553,12 @@ def sweep(case: Case, grid: dict[str, Any]) -> dict[str, Any] | None:
     if any(key not in SWEEP_KEYS for key in grid):
         return None
     fr = friction_of(case)
-    given = {SWEEP_KEYS[key]: np.asarray(values, dtype=float) for key, values in grid.items()}
-    z1, z2 = given.get("z1", fr.z1), given.get("z2", fr.z2)
-    f1, f2 = given.get("f1", fr.f1), given.get("f2", fr.f2)
-    eta1, eta2 = given.get("eta1", fr.eta1), given.get("eta2", fr.eta2)
-    static_sum = z1 * f1 + z2 * f2
-    sliding_sum = z1 * eta1 * f1 + z2 * eta2 * f2
-    with np.errstate(divide="ignore", invalid="ignore"):
-        bound = math.pi * static_sum / (4.0 * z2 * f2 * sliding_sum * (1.0 - eta2))
-    return {"c_max": np.where(np.asarray(eta2) < 1.0, bound, np.nan)}
+    given: dict[str, Any] = {
+        SWEEP_KEYS[key]: np.asarray(values, dtype=float) for key, values in grid.items()
+    }
+    arrays = replace(fr, **given)
+    # The report shows "unbounded" for η₂ = 1: missing (NaN) in the sweep.
+    return {"c_max": np.where(arrays.eta2 < 1.0, gain_bound(arrays), np.nan)}
 
 
 def template() -> dict[str, Any]:
