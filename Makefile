@@ -31,9 +31,10 @@ test: $(VENV)/.installed-test
 	$(BIN)/mdcalc check cases --jobs 0
 
 # Figures for the README's performance section; not part of `make test` (timings
-# are printed, never asserted).
+# are printed, never asserted). `make bench AGAINST=../old-checkout` also compares the
+# start-up of every problem with another checkout, in the same run.
 bench: $(VENV)/.installed
-	$(BIN)/python bench/bench.py
+	$(BIN)/python bench/bench.py $(if $(AGAINST),--against $(AGAINST))
 
 clean:
 	rm -rf $(VENV) build *.egg-info .pytest_cache .mypy_cache .ruff_cache

@@ -63,6 +63,57 @@ def startup() -> None:
     )
 
 
+#: One scene per problem, for the start-up of a single command against another checkout.
+STARTUP_CASES = [
+    ("--help", None),
+    ("braking", "braking/lecture.toml"),
+    ("clutch", "clutch/fig2_differentiated.toml"),
+    ("hoist", "hoist/lift.toml"),
+    ("mount", "mount/example_9_1.toml"),
+    ("coupling", "coupling/example_8_1.toml"),
+    ("acceleration", "acceleration/lecture.toml"),
+    ("mine-hoist", "mine-hoist/seed_1025.toml"),
+    ("variator", "variator/two_disk_absorber.toml"),
+    ("mechanism", "mechanism/crank_press.toml"),
+    ("resonance", "resonance/inline_six.toml"),
+]
+
+
+def from_source(root: Path) -> list[str]:
+    """mdcalc run from the checkout at ``root`` rather than the installed one (the
+    editable install's finder is set aside), in this same interpreter and venv."""
+    code = (
+        "import sys\n"
+        "sys.meta_path = [f for f in sys.meta_path if 'editable' not in repr(f).lower()]\n"
+        f"sys.path.insert(0, {str(root)!r})\n"
+        "from mdcalc.cli import main\n"
+        "sys.argv[0] = 'mdcalc'\n"
+        "main()\n"
+    )
+    return [PYTHON, "-c", code]
+
+
+def startup_against(other: Path) -> None:
+    """Start-up of one scene of every problem, this checkout against ``other`` (for
+    example the commit before a refactoring), interleaved in one run."""
+    print(f"start-up, this checkout against {other} (best of {REPEATS}, interleaved):")
+    total_theirs = total_ours = 0.0
+    for problem, case in STARTUP_CASES:
+        args = [problem] if case is None else [problem, str(ROOT / "cases" / case)]
+        if case is not None and not (other / "cases" / case).exists():
+            continue
+        theirs, ours = best_of_interleaved(from_source(other) + args, from_source(ROOT) + args)
+        total_theirs, total_ours = total_theirs + theirs, total_ours + ours
+        print(
+            f"  {' '.join([problem, *(case and [case] or [])]):58s} "
+            f"{theirs * 1e3:6.0f} -> {ours * 1e3:6.0f} ms  ({ours / theirs:.2f})"
+        )
+    print(
+        f"  {'all of them':58s} {total_theirs * 1e3:6.0f} -> {total_ours * 1e3:6.0f} ms  "
+        f"({total_ours / total_theirs:.2f})"
+    )
+
+
 def batch(folder: Path) -> None:
     cases = folder / "cases"
     cases.mkdir()
@@ -169,6 +220,8 @@ def mine_hoist() -> None:
 def main() -> None:
     os.environ.pop("NO_COLOR", None)
     print(f"mdcalc benchmarks: {os.cpu_count()} cores, Python {sys.version.split()[0]}")
+    if len(sys.argv) == 3 and sys.argv[1] == "--against":
+        startup_against(Path(sys.argv[2]).resolve())
     with tempfile.TemporaryDirectory() as tmp:
         folder = Path(tmp)
         startup()

@@ -1,6 +1,6 @@
-"""Registry of problems: one module per subcommand.
+"""Registry of problems: one module or package per subcommand.
 
-A problem module supplies, for its subcommand to exist:
+A problem supplies, for its subcommand to exist:
 
 1. ``Case`` -- a pydantic model of the case file, derived from
    :class:`mdcalc.model.CaseBase`, with ``problem: Literal["<name>"]``; sections are
@@ -13,8 +13,22 @@ A problem module supplies, for its subcommand to exist:
 3. ``report(result) -> Report`` -- the sections the scene needs (quantities with
    stable keys, tables, a Methods table built by :func:`mdcalc.methods.compare`).
 4. ``template() -> dict`` -- a starter case that runs as it is (``mdcalc new``).
-5. Reference, stiff and extreme cases in ``cases/<name>/`` with ``[expect]`` tables,
+5. Optionally ``charts(result) -> list[Chart]`` (``--plot``; data only, no
+   matplotlib) and ``sweep(case, grid) -> dict | None``, the vectorized kernel of
+   ``mdcalc sweep``. A kernel runs the same formulas as ``solve``: closed forms are
+   written once for floats and numpy arrays (:mod:`mdcalc.core.xp`), and
+   :func:`mdcalc.model.with_values` puts the grid's arrays into the case so that the
+   problem's own scene code runs on them. Never restate a formula in numpy.
+6. Reference, stiff and extreme cases in ``cases/<name>/`` with ``[expect]`` tables,
    and tests whose expected values are computed independently of the module.
+
+Layout: a small problem is one module, ``problems/<name>.py``. One that outgrows
+~700 lines (tests/test_architecture.py holds the limit) is a package whose files
+show its parts: ``problems/<name>/__init__.py`` is its face (the names above and
+nothing else, in ``__all__``), ``case.py`` the pydantic sections, ``solve.py`` (or
+one file per sub-scene) the scene and solver, ``report.py``, ``charts.py`` and
+``kernel.py``. Imports inside a package run one way, case <- solve <- report <-
+charts, with no circle (tests/test_architecture.py checks the whole import graph).
 
 Then add one :class:`ProblemSpec` to ``PROBLEMS`` below: the CLI command, ``check``
 and ``new`` pick it up. The module is imported only when its command runs, so
