@@ -239,7 +239,7 @@ def test_a_torque_table_with_reversal_by_superposition(tmp_path):
 
 
 def test_a_stiff_pulse_is_thinned_to_a_band():
-    from mdcalc.problems.coupling import CHART_MAX_POINTS
+    from mdcalc.problems.coupling.charts import CHART_MAX_POINTS
 
     _, _, charts = case("stiff")
     c = charts[0]

@@ -10,7 +10,9 @@ point by point at once. The two agree to round-off (tests/test_sweep_kernels.py)
 float only the branch that applies runs (so ``math.sqrt`` of a negative number in
 the other one never raises); for arrays both run under ``np.errstate(all="ignore")``
 and are blended, so the branch that does not apply may produce inf or nan freely.
-A branch may give a tuple of results: they are blended one by one.
+A branch may give a tuple of results: they are blended one by one. A condition that
+is one value (the inputs it depends on are not varied) runs one branch, as for a
+float: a branch's arithmetic on plain floats would raise where numpy's gives inf.
 ``xp.missing`` is what a branch without a value gives: None for a float, nan in an
 array.
 """
@@ -42,6 +44,7 @@ class Floats:
     atan = staticmethod(math.atan)
     atan2 = staticmethod(math.atan2)
     hypot = staticmethod(math.hypot)
+    degrees = staticmethod(math.degrees)
     abs = staticmethod(abs)
     minimum = staticmethod(min)
     maximum = staticmethod(max)
@@ -72,6 +75,7 @@ class Arrays:
         self.atan = np.arctan
         self.atan2 = np.arctan2
         self.hypot = np.hypot
+        self.degrees = np.degrees
         self.abs = np.abs
         self.minimum = np.minimum
         self.maximum = np.maximum
@@ -79,6 +83,8 @@ class Arrays:
     def where(self, condition: Any, then: Callable[[], Any], otherwise: Callable[[], Any]) -> Any:
         np = self._np
         with np.errstate(all="ignore"):
+            if np.ndim(condition) == 0:  # one scene's condition: one branch, as for floats
+                return then() if condition else otherwise()
             chosen, other = then(), otherwise()
             if isinstance(chosen, tuple):  # several results of one branch, blended alike
                 return tuple(np.where(condition, a, b) for a, b in zip(chosen, other, strict=True))

@@ -1,0 +1,147 @@
+"""The solver: the Methods of each load, and the result."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Literal
+
+from mdcalc.core import sdof
+from mdcalc.core.ode import IMPORTS as ODE_IMPORTS
+from mdcalc.methods import Method, compare
+from mdcalc.problems.coupling.case import Case
+from mdcalc.problems.coupling.scene import Scene, scene_of
+from mdcalc.problems.coupling.transients import Transient, duhamel_peak, ode_peak, transients
+from mdcalc.report import (
+    MethodQuantity,
+    MethodsTable,
+)
+
+
+@dataclass
+class Result:
+    case: Case
+    scene: Scene
+    step_methods: MethodsTable | None = None
+    harmonic_methods: MethodsTable | None = None
+    transient_methods: list[tuple[Transient, MethodsTable, tuple[float, float]]] = field(
+        default_factory=list
+    )
+    status: Literal["ok", "no-answer"] = "ok"
+    message: str | None = None
+
+
+FACTOR = [MethodQuantity("dynamic_factor", "dynamic factor", "")]
+
+ODE_RTOLS = ((1e-3, "RK45"), (1e-6, "RK45"), (1e-10, "DOP853"))
+
+
+def _ode_methods(run: Callable[[float], float]) -> list[Method]:
+    def method(rtol: float, name: str) -> Method:
+        return Method(
+            f"ODE {name}, rtol {rtol:.0e}".replace("e-0", "e-"),
+            lambda: {"dynamic_factor": run(rtol)},
+            imports=ODE_IMPORTS,
+        )
+
+    return [method(rtol, name) for rtol, name in ODE_RTOLS]
+
+
+def step_factor_lecture(scene: Scene) -> float:
+    """Example 8.1's reading of (8.16): peak at t = τ/2 with β₁ ≈ β and (p/2)²
+    neglected: 1 + e^(-p·τ/4)."""
+    return 1.0 + math.exp(-scene.p * scene.period / 4.0)
+
+
+def solve(case: Case) -> Result:
+    scene = scene_of(case)
+    result = Result(case, scene)
+    if case.harmonic is not None and scene.p == 0.0:
+        ratio = case.harmonic.omega / scene.beta
+        if ratio == 1.0:
+            result.status = "no-answer"
+            result.message = (
+                f"undamped resonance: ω = β = {scene.beta:.6g} rad/s and the coupling has no "
+                "damping, so the steady twist (8.27) is unbounded; give absorption, "
+                "log_decrement or damping"
+            )
+            return result
+    if case.step is not None:
+        zeta = scene.zeta
+        horizon = (sdof.step_peak_time(scene.beta, zeta) or 10.0 / scene.beta) * 1.5
+        step = Transient("step", "step", [(0.0, 1.0)], horizon)
+        result.step_methods = compare(
+            "Methods: dynamic factor of a suddenly applied torque",
+            "step",
+            FACTOR,
+            [
+                Method(
+                    "lecture: t = τ/2, β₁ ≈ β",
+                    lambda: {"dynamic_factor": step_factor_lecture(scene)},
+                    note="example 8.1",
+                ),
+                Method(
+                    "exact 1 + exp(-πζ/√(1-ζ²))",
+                    lambda: {"dynamic_factor": sdof.step_peak(zeta)},
+                    reference=True,
+                ),
+                *_ode_methods(lambda rtol: ode_peak(scene, step, rtol)),
+            ],
+        )
+    if case.harmonic is not None and scene.p > 0.0:
+        gamma = scene.p / scene.beta
+        if gamma * gamma < 2.0:
+            result.harmonic_methods = compare(
+                "Methods: resonance peak of the twist, in units of M/β²",
+                "resonance",
+                [MethodQuantity("resonance_peak", "peak·β²/M", "")],
+                [
+                    Method(
+                        "(8.32) as printed, √(1 - γ²/2)",
+                        lambda: {"resonance_peak": 1.0 / (gamma * math.sqrt(1.0 - gamma**2 / 2.0))},
+                    ),
+                    Method(
+                        "corrected (8.32), √(1 - γ²/4)",
+                        lambda: {"resonance_peak": 1.0 / (gamma * math.sqrt(1.0 - gamma**2 / 4.0))},
+                        reference=True,
+                    ),
+                    Method(
+                        "max of (8.28) on a λ grid of 10⁴ points",
+                        lambda: {"resonance_peak": _grid_peak(gamma)},
+                    ),
+                ],
+            )
+    for transient in transients(case, scene):
+        table = compare(
+            f"Methods: {transient.title}",
+            transient.key,
+            FACTOR,
+            _transient_methods(scene, transient),
+        )
+        result.transient_methods.append((transient, table, duhamel_peak(scene, transient)))
+    return result
+
+
+def _transient_methods(scene: Scene, transient: Transient) -> list[Method]:
+    methods: list[Method] = []
+    exact = transient.closed_form
+    if exact is not None:
+        methods.append(
+            Method(transient.closed_form_name, lambda: {"dynamic_factor": exact}, note="undamped")
+        )
+    methods.append(
+        Method(
+            "Duhamel, exact for piecewise-linear loads",
+            lambda: {"dynamic_factor": duhamel_peak(scene, transient)[0]},
+            reference=True,
+        )
+    )
+    return methods + _ode_methods(lambda rtol: ode_peak(scene, transient, rtol))
+
+
+def _grid_peak(gamma: float) -> float:
+    return max(
+        1.0 / math.hypot(1.0 - lam * lam, gamma * lam)
+        for lam in (3.0 * k / 10000 for k in range(10001))
+    )
