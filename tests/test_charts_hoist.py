@@ -329,7 +329,8 @@ def test_touch_down_of_a_load_on_a_taut_rope_against_an_ode_run():
     integration of x1'' = (D - F)/m1, y'' = (F - G)/m2."""
     from scipy.integrate import solve_ivp
 
-    from mdcalc.problems.hoist import RopePiece, RopeScene, _load, _touch_down
+    from mdcalc.problems.hoist.history import RopePiece, _load, _touch_down
+    from mdcalc.problems.hoist.rope import RopeScene
 
     m1, m2, c, a = 1000.0, 1000.0, 1.0e6, 0.1
     weight = m2 * G0
