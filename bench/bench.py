@@ -177,17 +177,20 @@ def mine_hoist() -> None:
     from mdcalc.casefile import read_case, validate
     from mdcalc.core import chain as chains
     from mdcalc.core.ode import TooManySteps, linear_oscillator_maxima
-    from mdcalc.problems import mine_hoist as mh
+    from mdcalc.problems import mine_hoist
+    from mdcalc.problems.mine_hoist.modal import dynamics, first_swing_factors, frequency_ratio
+    from mdcalc.problems.mine_hoist.ode_rows import STIFF_RATIO
+    from mdcalc.problems.mine_hoist.scene import scene_at
 
     for name, target in (("seed_1025", 0.1), ("stiff_chord", 0.2)):
-        case = validate(mh.Case, read_case(ROOT / "cases" / "mine-hoist" / f"{name}.toml"))
-        scene = mh.scene_at(case)
-        dyn = mh.dynamics(scene)
+        case = validate(mine_hoist.Case, read_case(ROOT / "cases" / "mine-hoist" / f"{name}.toml"))
+        scene = scene_at(case)
+        dyn = dynamics(scene)
         a, f = chains.moment_equations(scene.chain, scene.torques)
         r = np.array(dyn.static)
-        exact = mh.first_swing_factors(scene)
-        modal = timed(lambda: mh.first_swing_factors(scene))  # noqa: B023
-        stiff = mh.frequency_ratio(dyn) >= mh.STIFF_RATIO
+        exact = first_swing_factors(scene)
+        modal = timed(lambda: first_swing_factors(scene))  # noqa: B023
+        stiff = frequency_ratio(dyn) >= STIFF_RATIO
         for method in ("DOP853", "Radau") if stiff else ("DOP853",):
             outcome: dict[str, float] = {}
 
@@ -209,7 +212,7 @@ def mine_hoist() -> None:
                 continue
             error = max(abs(outcome[k] - exact[k]) / exact[k] for k in ("mu12", "mu23"))
             row(
-                f"mine-hoist {name} (β₂/β₁ {mh.frequency_ratio(dyn):.0f}): ODE {method} 1e-10",
+                f"mine-hoist {name} (β₂/β₁ {frequency_ratio(dyn):.0f}): ODE {method} 1e-10",
                 f"{seconds * 1e3:.0f} ms, err {error:.1e}",
                 f"<= {target * 1e3:.0f} ms",
                 seconds <= target,
