@@ -17,7 +17,7 @@ Every expected value is computed in this file, never copied from the program:
   and the undamped first-tongue transition curves a = 1 ± q - q²/8 ∓ q³/64.
 
 The program is run in-process through its CLI (``--json``) or, for the modal property
-tests, through ``mdcalc.problems.resonance.modal`` on a ``ChainSection``.
+tests, through ``mdcalc.problems.resonance.chain.modal`` on a ``ChainSection``.
 """
 
 from __future__ import annotations
@@ -45,7 +45,8 @@ from tomli_w import dumps as toml_dumps
 from typer.testing import CliRunner
 
 from mdcalc.cli import app
-from mdcalc.problems.resonance import ChainSection, modal
+from mdcalc.problems.resonance.case import ChainSection
+from mdcalc.problems.resonance.chain import modal
 from mdcalc.report import render_rich, to_json
 from mdcalc.runner import run_case
 from tests.conftest import CASES, assert_no_traceback, strict_json, walk_finite
