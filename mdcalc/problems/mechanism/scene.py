@@ -1,0 +1,147 @@
+"""The scene: the reduced inertia and the torque M(φ, ω) from the case (formulas
+or tables, repeated over a period), with the torque's slope in ω."""
+
+from __future__ import annotations
+
+import bisect
+from collections.abc import Callable
+from dataclasses import dataclass
+
+from mdcalc.expr import parse
+from mdcalc.problems.mechanism.case import TWO_PI, VARIABLES, Case, _flat, _start_speed
+
+
+class Periodic:
+    """Linear interpolation of a table over one revolution, repeated every 2π."""
+
+    def __init__(self, angles: list[float], values: list[float]) -> None:
+        if angles[-1] - angles[0] >= TWO_PI * (1.0 - 1e-12):  # a closing point: drop it
+            angles, values = angles[:-1], values[:-1]
+        self.start = angles[0]
+        self.angles = [*angles, angles[0] + TWO_PI]
+        self.values = [*values, values[0]]
+
+    def __call__(self, phi: float) -> float:
+        x = self.start + (phi - self.start) % TWO_PI
+        k = min(max(bisect.bisect_right(self.angles, x) - 1, 0), len(self.angles) - 2)
+        a0, a1 = self.angles[k], self.angles[k + 1]
+        w = (x - a0) / (a1 - a0)
+        return self.values[k] + w * (self.values[k + 1] - self.values[k])
+
+
+@dataclass(frozen=True)
+class Scene:
+    torque: Callable[[float, float], float]  # M(φ, ω) [N·m]
+    slope: Callable[[float, float], float]  # ∂M/∂ω [N·m·s/rad]
+    inertia: Callable[[float], float]  # I(φ) [kg·m²]
+    depends_on_speed: bool
+    start_angle: float
+    start_speed: float
+    revolutions: float
+    steps: int  # per revolution
+    speed_range: tuple[float, float] | None  # of a two-way table
+    breaks: tuple[float, ...] = ()  # table knots in [0, 2π): kinks of M or I
+
+    @property
+    def span(self) -> float:
+        return self.revolutions * TWO_PI
+
+    @property
+    def end_angle(self) -> float:
+        return self.start_angle + self.span
+
+
+def _central_slope(torque: Callable[[float, float], float]) -> Callable[[float, float], float]:
+    def slope(phi: float, omega: float) -> float:
+        h = 1e-6 * max(abs(omega), 1e-3)
+        if omega - h < 0.0:  # forward difference at rest: ω < 0 may be outside M's domain
+            return (torque(phi, omega + h) - torque(phi, omega)) / h
+        return (torque(phi, omega + h) - torque(phi, omega - h)) / (2.0 * h)
+
+    return slope
+
+
+def scene_of(case: Case) -> Scene:
+    t, i = case.torque, case.inertia
+    speed_range: tuple[float, float] | None = None
+    torque: Callable[[float, float], float]
+    slope: Callable[[float, float], float]
+    if t.formula is not None:
+        m = parse(t.formula, VARIABLES, case.parameters)
+        depends = m.uses("omega")
+
+        def torque(phi: float, omega: float) -> float:
+            return m(phi=phi, omega=omega)
+
+        slope = _central_slope(torque) if depends else (lambda phi, omega: 0.0)
+    else:
+        angles = t.table_angles()
+        assert angles is not None and t.values is not None
+        if t.speeds is None:
+            table = Periodic(angles, [float(v) for v in _flat(t.values)])
+            depends = False
+
+            def torque(phi: float, omega: float) -> float:
+                return table(phi)
+
+            slope = lambda phi, omega: 0.0  # noqa: E731
+        else:
+            torque, slope = _two_way(angles, list(t.speeds), t.values)  # type: ignore[arg-type]
+            depends = True
+            speed_range = (t.speeds[0], t.speeds[-1])
+    inertia: Callable[[float], float]
+    if i.value is not None:
+        constant = i.value
+        inertia = lambda phi: constant  # noqa: E731
+    elif i.formula is not None:
+        expression = parse(i.formula, ("phi",), case.parameters)
+
+        def inertia(phi: float) -> float:
+            value = expression(phi=phi)
+            if not value > 0.0:
+                raise ArithmeticError(f"I(φ) = {value:.6g} kg·m² at φ = {phi:.6g} rad")
+            return value
+
+    else:
+        angles = i.table_angles()
+        assert angles is not None and i.values is not None
+        inertia = Periodic(angles, list(i.values))
+    motion = case.motion
+    knots: set[float] = set()
+    for section in (t, i):
+        angles = section.table_angles()
+        if angles is not None:
+            knots.update(a % TWO_PI for a in angles)
+    return Scene(
+        torque,
+        slope,
+        inertia,
+        depends,
+        motion.start_angle,
+        _start_speed(motion),
+        motion.revolutions,
+        motion.steps_per_revolution,
+        speed_range,
+        tuple(sorted(knots)),
+    )
+
+
+def _two_way(
+    angles: list[float], speeds: list[float], rows: list[list[float]]
+) -> tuple[Callable[[float, float], float], Callable[[float, float], float]]:
+    """M(φ, ω) bilinear in the table, periodic in φ, linear beyond the speed range."""
+    columns = [Periodic(angles, [row[j] for row in rows]) for j in range(len(speeds))]
+
+    def cell(omega: float) -> int:
+        return min(max(bisect.bisect_right(speeds, omega) - 1, 0), len(speeds) - 2)
+
+    def torque(phi: float, omega: float) -> float:
+        j = cell(omega)
+        m0, m1 = columns[j](phi), columns[j + 1](phi)
+        return m0 + (omega - speeds[j]) / (speeds[j + 1] - speeds[j]) * (m1 - m0)
+
+    def slope(phi: float, omega: float) -> float:
+        j = cell(omega)
+        return (columns[j + 1](phi) - columns[j](phi)) / (speeds[j + 1] - speeds[j])
+
+    return torque, slope
