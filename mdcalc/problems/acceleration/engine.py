@@ -1,0 +1,130 @@
+"""The engine curve: torque against speed from a catalogue table or the external
+characteristic."""
+
+from __future__ import annotations
+
+import bisect
+import math
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+from mdcalc.core.units import rpm_to_rad_s
+
+if TYPE_CHECKING:  # annotations only: the case validates itself with this curve
+    from mdcalc.problems.acceleration.case import Case, Engine
+
+
+@dataclass(frozen=True)
+class EngineCurve:
+    """Full-throttle torque against engine speed ω [rad/s]: Leiderman or a table."""
+
+    speeds: tuple[float, ...]  # table: ω [rad/s]; Leiderman: ()
+    torques: tuple[float, ...]
+    rated_torque: float = 0.0  # Leiderman: M_N = N_E/ω_E [N·m]
+    rated_speed: float = 0.0  # ω_E [rad/s]
+    coefficients: tuple[float, float, float] = (0.0, 0.0, 0.0)
+
+    @property
+    def is_table(self) -> bool:
+        return bool(self.speeds)
+
+    @property
+    def low(self) -> float:
+        """Lowest engine speed the curve covers [rad/s]."""
+        return self.speeds[0] if self.is_table else 0.0
+
+    @property
+    def high(self) -> float:
+        """Highest engine speed with positive torque [rad/s]."""
+        if self.is_table:
+            return self.speeds[-1]
+        a, b, c = self.coefficients
+        if c == 0.0:
+            return math.inf if b >= 0 else -a / b * self.rated_speed
+        # The positive root of a + b·x - c·x² (c > 0: the curve falls to zero there).
+        disc = b * b + 4.0 * a * c
+        if c < 0.0 or disc < 0.0:
+            return math.inf
+        return (b + math.sqrt(disc)) / (2.0 * c) * self.rated_speed
+
+    def torque(self, omega: float) -> float:
+        """M_e(ω) [N·m]; a table is interpolated linearly and held at its ends."""
+        if self.is_table:
+            s, m = self.speeds, self.torques
+            if omega <= s[0]:
+                return m[0]
+            if omega >= s[-1]:
+                return m[-1]
+            k = bisect.bisect_right(s, omega)
+            w = (omega - s[k - 1]) / (s[k] - s[k - 1])
+            return m[k - 1] + w * (m[k] - m[k - 1])
+        a, b, c = self.coefficients
+        x = omega / self.rated_speed
+        return self.rated_torque * (a + b * x - c * x * x)  # (7.37) read as Leiderman's
+
+    def _candidates(self, limit: float) -> list[float]:
+        """Table speeds up to ``limit``, ``limit`` itself and a fine grid: where a
+        piecewise-linear torque, or the piecewise-quadratic power M·ω, peaks."""
+        inside = [w for w in self.speeds if w <= limit]
+        grid = [self.low + (limit - self.low) * k / 512 for k in range(513)]
+        return sorted({*inside, *grid})
+
+    def peak(self, limit: float) -> tuple[float, float]:
+        """(ω, M) at the maximum torque on [low, limit]."""
+        if self.is_table:
+            omega = max(self._candidates(limit), key=self.torque)
+            return omega, self.torque(omega)
+        a, b, c = self.coefficients
+        x = b / (2.0 * c) if c > 0 else limit / self.rated_speed
+        omega = min(max(x * self.rated_speed, self.low), limit)
+        return omega, self.torque(omega)
+
+    def max_power_speed(self, limit: float) -> float:
+        """ω of the maximum power M·ω on [low, limit]: n_E of Leiderman's curve."""
+        if not self.is_table:
+            return min(self.rated_speed, limit)
+        return max(self._candidates(limit), key=lambda w: w * self.torque(w))
+
+
+def engine_curve(engine: Engine) -> EngineCurve:
+    if engine.torque_curve is not None:
+        return EngineCurve(
+            tuple(rpm_to_rad_s(n) for n in engine.torque_curve.speed_rpm),
+            tuple(engine.torque_curve.torque),
+        )
+    assert engine.max_power is not None and engine.max_power_speed_rpm is not None
+    omega_e = rpm_to_rad_s(engine.max_power_speed_rpm)
+    a, b, c = engine.leiderman
+    return EngineCurve((), (), engine.max_power / omega_e, omega_e, (a, b, c))
+
+
+def engine_speeds(case: Case, curve: EngineCurve) -> tuple[float, float, float]:
+    """(launch, shift, rev-limit) engine speeds [rad/s] with their defaults."""
+    engine, gearbox = case.engine, case.transmission
+    if engine.max_speed_rpm is not None:
+        limit = rpm_to_rad_s(engine.max_speed_rpm)
+    elif curve.is_table:
+        limit = curve.high
+    else:
+        limit = curve.rated_speed
+    if gearbox.shift_speed_rpm is not None:
+        shift = rpm_to_rad_s(gearbox.shift_speed_rpm)
+    else:  # n_E, the speed of maximum power
+        shift = curve.max_power_speed(limit)
+    if gearbox.launch_speed_rpm is not None:
+        launch = rpm_to_rad_s(gearbox.launch_speed_rpm)
+    elif engine.max_torque_speed_rpm is not None:
+        launch = rpm_to_rad_s(engine.max_torque_speed_rpm)
+    else:
+        launch = curve.peak(limit)[0]
+    return launch, shift, limit
+
+
+def default_launch_at_an_end(case: Case, curve: EngineCurve, limit: float) -> bool:
+    """Whether the default launch speed (peak torque) falls at an end of the curve's
+    range: a flat, rising or falling curve gives no sensible launch speed by itself."""
+    if case.transmission.launch_speed_rpm or case.engine.max_torque_speed_rpm:
+        return False
+    omega = curve.peak(limit)[0]
+    span = limit - curve.low
+    return omega <= curve.low + 1e-9 * span or omega >= limit - 1e-9 * span
