@@ -59,8 +59,8 @@ def sweep(case: Case, grid: dict[str, Any]) -> dict[str, Any] | None:
             "period": s.period,
             "damping_p": np.where(damped, s.p, np.nan),
             "damping_alpha": np.where(damped, s.alpha, np.nan),
-            "log_decrement": np.where(damped, s.p * s.period / 2.0, np.nan),
-            "absorption": np.where(damped, s.p * s.period, np.nan),
+            "log_decrement": np.where(damped, s.log_decrement, np.nan),
+            "absorption": np.where(damped, s.absorption, np.nan),
             "damping_ratio": np.where(damped, s.zeta, np.nan),
         }
         if arrays.step is not None:

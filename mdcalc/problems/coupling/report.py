@@ -76,8 +76,8 @@ def _scene_section(case: Case, s: Scene) -> Quantities:
         items += [
             Quantity("damping_p", "p (8.3)", s.p, "1/s"),
             Quantity("damping_alpha", "α = p·J", s.alpha, "N·m·s/rad"),
-            Quantity("log_decrement", "δ = p·τ/2 (8.7)", s.p * s.period / 2.0, ""),
-            Quantity("absorption", "ψ = 2δ (8.14)", s.p * s.period, ""),
+            Quantity("log_decrement", "δ = p·τ/2 (8.7)", s.log_decrement, ""),
+            Quantity("absorption", "ψ = 2δ (8.14)", s.absorption, ""),
             Quantity("damping_ratio", "ζ = p/(2β)", s.zeta, ""),
         ]
     return Quantities("Coupling", items)

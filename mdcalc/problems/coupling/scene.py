@@ -41,6 +41,16 @@ class Scene:
         return self.p / (2.0 * self.beta)
 
     @property
+    def log_decrement(self) -> Any:
+        """δ = p·τ/2 (8.7)."""
+        return self.p * self.period / 2.0
+
+    @property
+    def absorption(self) -> Any:
+        """ψ = 2δ = p·τ (8.14)."""
+        return self.p * self.period
+
+    @property
     def alpha(self) -> float:
         """α = p·J [N·m·s/rad]."""
         return self.p * self.reduced_inertia

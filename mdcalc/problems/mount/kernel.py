@@ -2,20 +2,18 @@
 
 from __future__ import annotations
 
-import math
 from typing import Any
 
-from mdcalc.core import sdof
 from mdcalc.problems.mount.case import Case
 from mdcalc.problems.mount.scene import (
-    QUASI_STATIC_RATIO,
-    RAD_S_TO_RPM,
     SWEEP_KEYS,
     _inputs,
-    dynamic_factor,
+    isolation_numbers,
     peak_of_two_harmonics_array,
+    response_numbers,
     scene_from,
-    stiffness_for,
+    scene_numbers,
+    transmission_numbers,
 )
 
 #: Inputs of which a case gives exactly one.
@@ -53,47 +51,17 @@ def sweep(case: Case, grid: dict[str, Any]) -> dict[str, Any] | None:
         if not (np.all(np.isfinite(first)) and np.all(np.isfinite(second))):
             return None  # c = M·ω² to round-off: point by point says what happens
 
-        results = {
-            "engine_mass": s.engine_mass,
-            "piston_mass": s.piston_mass,
-            "crank_radius": s.radius,
-            "rod_ratio": s.rod_ratio,
-            "crank_speed": s.omega,
-            "crank_speed_rpm": s.omega * RAD_S_TO_RPM,
-            "stiffness": s.stiffness,
-            "static_deflection": s.engine_mass * s.g / s.stiffness,
-            "natural_frequency": beta,
-            "natural_frequency_hz": beta / (2.0 * math.pi),
-            "resonant_speed_1": beta,
-            "resonant_speed_2": beta / 2.0,
-            "frequency_ratio": ratio,
-            "force_1": s.force(1),
-            "force_2": s.force(2),
-            "amplitude_1": np.abs(first),
-            "amplitude_2": np.abs(second),
-            "peak_displacement": peak_of_two_harmonics_array(first, second),
-            "dynamic_factor": dynamic_factor(ratio, zeta),
-            "quasi_static_ratio": QUASI_STATIC_RATIO,
-            "quasi_static_speed": QUASI_STATIC_RATIO * beta,
-            "quasi_static_period_ratio": 1.0 / QUASI_STATIC_RATIO,
-        }
+        results = (
+            scene_numbers(s)
+            | response_numbers(s)
+            | {"peak_displacement": peak_of_two_harmonics_array(first, second)}
+        )
         if given["zeta"] is not None:  # as in _transmission_section
-            forces = s.transmitted(1), s.transmitted(2)
-            results |= {
-                "damping_ratio": zeta,
-                "damping_coefficient": s.damping,
-                "transmitted_force_peak": peak_of_two_harmonics_array(*forces),
+            results |= transmission_numbers(s) | {
+                "transmitted_force_peak": peak_of_two_harmonics_array(
+                    s.transmitted(1), s.transmitted(2)
+                )
             }
-            for order, force in zip((1, 2), forces, strict=True):
-                r = order * s.omega / beta
-                results[f"transmissibility_{order}"] = sdof.transmissibility(r, zeta)
-                results[f"transmitted_force_{order}"] = np.abs(force)
         if given["target"] is not None:  # as in _isolation_section
-            stiffness = stiffness_for(s, given["target"])
-            results |= {
-                "target_transmissibility": given["target"],
-                "required_stiffness": stiffness,
-                "required_static_deflection": s.engine_mass * s.g / stiffness,
-                "required_natural_frequency": np.sqrt(stiffness / s.engine_mass),
-            }
+            results |= isolation_numbers(s, given["target"])
     return results

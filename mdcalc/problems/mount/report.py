@@ -6,14 +6,14 @@ import cmath
 import math
 from typing import Any
 
-from mdcalc.core import sdof
 from mdcalc.problems.mount.scene import (
     QUASI_STATIC_FACTOR,
-    QUASI_STATIC_RATIO,
     RAD_S_TO_RPM,
     Scene,
-    dynamic_factor,
-    stiffness_for,
+    isolation_numbers,
+    response_numbers,
+    scene_numbers,
+    transmission_numbers,
 )
 from mdcalc.problems.mount.solve import Result
 from mdcalc.report import Note, Quantities, Quantity, Report
@@ -22,23 +22,23 @@ from mdcalc.report import Note, Quantities, Quantity, Report
 def report(result: Result) -> Report:
     case, s = result.case, result.scene
     title = case.title or "Engine on elastic mounts"
-    beta = s.beta
-    ratio = s.omega / beta
+    n = scene_numbers(s)
+    beta, ratio = n["natural_frequency"], n["frequency_ratio"]
     sections: list[Any] = [
         Quantities(
             "Scene",
             [
-                Quantity("engine_mass", "Engine mass M", s.engine_mass, "kg"),
-                Quantity("piston_mass", "Piston mass m", s.piston_mass, "kg"),
-                Quantity("crank_radius", "Crank radius r", s.radius, "m"),
-                Quantity("rod_ratio", "λ = r/l", s.rod_ratio, ""),
-                Quantity("crank_speed", "Crank speed ω", s.omega, "rad/s"),
-                Quantity("crank_speed_rpm", "Crank speed", s.omega * RAD_S_TO_RPM, "rpm"),
-                Quantity("stiffness", "Mount stiffness c", s.stiffness, "N/m"),
+                Quantity("engine_mass", "Engine mass M", n["engine_mass"], "kg"),
+                Quantity("piston_mass", "Piston mass m", n["piston_mass"], "kg"),
+                Quantity("crank_radius", "Crank radius r", n["crank_radius"], "m"),
+                Quantity("rod_ratio", "λ = r/l", n["rod_ratio"], ""),
+                Quantity("crank_speed", "Crank speed ω", n["crank_speed"], "rad/s"),
+                Quantity("crank_speed_rpm", "Crank speed", n["crank_speed_rpm"], "rpm"),
+                Quantity("stiffness", "Mount stiffness c", n["stiffness"], "N/m"),
                 Quantity(
                     "static_deflection",
                     "Static deflection f = M·g/c",
-                    s.engine_mass * s.g / s.stiffness,
+                    n["static_deflection"],
                     "m",
                 ),
             ],
@@ -47,18 +47,18 @@ def report(result: Result) -> Report:
             "Natural frequency and resonances",
             [
                 Quantity("natural_frequency", "β = √(c/M) = √(g/f)", beta, "rad/s"),
-                Quantity("natural_frequency_hz", "β/2π", beta / (2.0 * math.pi), "Hz"),
+                Quantity("natural_frequency_hz", "β/2π", n["natural_frequency_hz"], "Hz"),
                 Quantity(
                     "resonant_speed_1",
                     "Resonance of the 1st harmonic, ω = β",
-                    beta,
+                    n["resonant_speed_1"],
                     "rad/s",
                     f"{beta * RAD_S_TO_RPM:.5g} rpm",
                 ),
                 Quantity(
                     "resonant_speed_2",
                     "Resonance of the 2nd harmonic, ω = β/2",
-                    beta / 2.0,
+                    n["resonant_speed_2"],
                     "rad/s",
                     f"{beta / 2.0 * RAD_S_TO_RPM:.5g} rpm; (7.74) prints 2·β = {2 * beta:.4g}",
                 ),
@@ -71,12 +71,19 @@ def report(result: Result) -> Report:
         return Report("mount", title, sections, notes, result.status, result.message)
 
     first, second = s.response(1), s.response(2)
+    h = response_numbers(s)
     harmonics = [
-        Quantity("force_1", "1st harmonic force m·r·ω²", s.force(1), "N"),
-        Quantity("force_2", "2nd harmonic force λ·m·r·ω²", s.force(2), "N"),
-        Quantity("amplitude_1", "|A₁| = m·r·ω²/|c - M·ω²|", abs(first), "m", _phase_note(first)),
+        Quantity("force_1", "1st harmonic force m·r·ω²", h["force_1"], "N"),
+        Quantity("force_2", "2nd harmonic force λ·m·r·ω²", h["force_2"], "N"),
         Quantity(
-            "amplitude_2", "|A₂| = λ·m·r·ω²/|c - 4·M·ω²|", abs(second), "m", _phase_note(second)
+            "amplitude_1", "|A₁| = m·r·ω²/|c - M·ω²|", h["amplitude_1"], "m", _phase_note(first)
+        ),
+        Quantity(
+            "amplitude_2",
+            "|A₂| = λ·m·r·ω²/|c - 4·M·ω²|",
+            h["amplitude_2"],
+            "m",
+            _phase_note(second),
         ),
         Quantity(
             "peak_displacement",
@@ -89,9 +96,8 @@ def report(result: Result) -> Report:
     ]
     sections.append(Quantities("Forced vibration (steady state)", harmonics))
 
-    mu = dynamic_factor(ratio, s.zeta)
+    mu = h["dynamic_factor"]
     mu_label = "μ = 1/(1 - ω²·M/c)" if s.zeta == 0.0 else "μ = |A₁|/f_st, damped"
-    r_star = QUASI_STATIC_RATIO
     quasi = abs(mu) <= QUASI_STATIC_FACTOR and ratio < 1.0
     sections.append(
         Quantities(
@@ -101,15 +107,15 @@ def report(result: Result) -> Report:
                 Quantity(
                     "quasi_static_ratio",
                     f"μ ≤ {QUASI_STATIC_FACTOR:g} while ω/β ≤ √(1 - 1/1.05)",
-                    r_star,
+                    h["quasi_static_ratio"],
                     "",
                     "the lecture rounds to 0.218",
                 ),
-                Quantity("quasi_static_speed", "that is ω ≤", r_star * beta, "rad/s"),
+                Quantity("quasi_static_speed", "that is ω ≤", h["quasi_static_speed"], "rad/s"),
                 Quantity(
                     "quasi_static_period_ratio",
                     "or forcing period over free period ≥",
-                    1.0 / r_star,
+                    h["quasi_static_period_ratio"],
                     "",
                     "the lecture prints 4.59",
                 ),
@@ -136,18 +142,17 @@ def _phase_note(amplitude: complex) -> str:
 
 
 def _transmission_section(result: Result) -> Quantities:
-    s = result.scene
+    t = transmission_numbers(result.scene)
     items = [
-        Quantity("damping_ratio", "Damping ratio ζ", s.zeta, ""),
-        Quantity("damping_coefficient", "c_d = 2·ζ·√(c·M)", s.damping, "N·s/m"),
+        Quantity("damping_ratio", "Damping ratio ζ", t["damping_ratio"], ""),
+        Quantity("damping_coefficient", "c_d = 2·ζ·√(c·M)", t["damping_coefficient"], "N·s/m"),
     ]
     for order in (1, 2):
-        ratio = order * s.omega / s.beta
         items.append(
             Quantity(
                 f"transmissibility_{order}",
                 f"Transmissibility, harmonic {order}",
-                sdof.transmissibility(ratio, s.zeta),
+                t[f"transmissibility_{order}"],
                 "",
             )
         )
@@ -155,7 +160,7 @@ def _transmission_section(result: Result) -> Quantities:
             Quantity(
                 f"transmitted_force_{order}",
                 f"Force on the frame, harmonic {order}",
-                abs(s.transmitted(order)),
+                t[f"transmitted_force_{order}"],
                 "N",
             )
         )
@@ -172,22 +177,24 @@ def _transmission_section(result: Result) -> Quantities:
 
 
 def _isolation_section(s: Scene, target: float) -> Quantities:
-    stiffness = stiffness_for(s, target)
+    i = isolation_numbers(s, target)
     return Quantities(
         f"Isolation target (first harmonic, ζ = {s.zeta:g} kept)",
         [
             Quantity("target_transmissibility", "Target transmissibility", target, ""),
-            Quantity("required_stiffness", "Mount stiffness needed c", stiffness, "N/m"),
+            Quantity(
+                "required_stiffness", "Mount stiffness needed c", i["required_stiffness"], "N/m"
+            ),
             Quantity(
                 "required_static_deflection",
                 "Static deflection with it",
-                s.engine_mass * s.g / stiffness,
+                i["required_static_deflection"],
                 "m",
             ),
             Quantity(
                 "required_natural_frequency",
                 "Natural frequency with it",
-                math.sqrt(stiffness / s.engine_mass),
+                i["required_natural_frequency"],
                 "rad/s",
             ),
         ],

@@ -143,6 +143,69 @@ def stiffness_for(scene: Scene, target: float) -> float:
     return scene.engine_mass * scene.omega**2 / u
 
 
+# ---------------------------------------------------- the report's numbers, by key
+# One formula each, for the report of one scene and the sweep kernel's grid alike.
+
+
+def scene_numbers(s: Scene) -> dict[str, Any]:
+    """The scene, its natural frequency and resonances."""
+    beta = s.beta
+    return {
+        "engine_mass": s.engine_mass,
+        "piston_mass": s.piston_mass,
+        "crank_radius": s.radius,
+        "rod_ratio": s.rod_ratio,
+        "crank_speed": s.omega,
+        "crank_speed_rpm": s.omega * RAD_S_TO_RPM,
+        "stiffness": s.stiffness,
+        "static_deflection": s.engine_mass * s.g / s.stiffness,  # f = M·g/c
+        "natural_frequency": beta,
+        "natural_frequency_hz": beta / (2.0 * math.pi),
+        "resonant_speed_1": beta,
+        "resonant_speed_2": beta / 2.0,
+        "frequency_ratio": s.omega / beta,
+    }
+
+
+def response_numbers(s: Scene) -> dict[str, Any]:
+    """The harmonics' forces and steady amplitudes, the dynamic factor (7.78) and the
+    quasi-static rule (no answer at an undamped resonance: not called there)."""
+    first, second = s.response(1), s.response(2)
+    xp = of(first, second)
+    return {
+        "force_1": s.force(1),
+        "force_2": s.force(2),
+        "amplitude_1": xp.abs(first),
+        "amplitude_2": xp.abs(second),
+        "dynamic_factor": dynamic_factor(s.omega / s.beta, s.zeta),
+        "quasi_static_ratio": QUASI_STATIC_RATIO,
+        "quasi_static_speed": QUASI_STATIC_RATIO * s.beta,
+        "quasi_static_period_ratio": 1.0 / QUASI_STATIC_RATIO,
+    }
+
+
+def transmission_numbers(s: Scene) -> dict[str, Any]:
+    """With the mounts' damping: the force each harmonic passes to the frame."""
+    numbers = {"damping_ratio": s.zeta, "damping_coefficient": s.damping}
+    for order in (1, 2):
+        transmitted = s.transmitted(order)
+        ratio = order * s.omega / s.beta
+        numbers[f"transmissibility_{order}"] = sdof.transmissibility(ratio, s.zeta)
+        numbers[f"transmitted_force_{order}"] = of(transmitted).abs(transmitted)
+    return numbers
+
+
+def isolation_numbers(s: Scene, target: Any) -> dict[str, Any]:
+    """The mount stiffness that gives the target transmissibility, and what follows."""
+    stiffness = stiffness_for(s, target)
+    return {
+        "target_transmissibility": target,
+        "required_stiffness": stiffness,
+        "required_static_deflection": s.engine_mass * s.g / stiffness,
+        "required_natural_frequency": of(stiffness, s.engine_mass).sqrt(stiffness / s.engine_mass),
+    }
+
+
 #: Keys ``mdcalc sweep`` may vary in the vectorized form, and the scene input each sets.
 SWEEP_KEYS = {
     "crank.speed": "speed",
