@@ -23,6 +23,11 @@ class Steady:
     brake_torque: float  # [N·m]
     lowering_torque: float  # [N·m]
 
+    @property
+    def brake_margin(self) -> float:
+        """The brake torque over the torque of the load when lowering [-]."""
+        return self.brake_torque / self.lowering_torque
+
 
 def steady(case: Case) -> Steady:
     weight = case.load.mass * case.gravity
@@ -56,6 +61,11 @@ class Inertia:
         if self.estimated:
             return self.factor * self.motor
         return self.motor + self.shafts + self.load
+
+    @property
+    def ratio(self) -> float:
+        """J/J1, which the lecture puts at 1.1…1.2 [-]."""
+        return self.total / self.motor
 
     @property
     def drive(self) -> float:

@@ -61,7 +61,7 @@ def sweep(case: Case, grid: dict[str, Any]) -> dict[str, Any] | None:
         "static_torque": st.static_torque,
         "brake_torque": st.brake_torque,
         "lowering_torque": st.lowering_torque,
-        "brake_margin": st.brake_torque / st.lowering_torque,
+        "brake_margin": st.brake_margin,
         "motor_inertia": inertia.motor,
         "reduced_inertia": inertia.total,
         "start_time": motion.time,
@@ -73,7 +73,7 @@ def sweep(case: Case, grid: dict[str, Any]) -> dict[str, Any] | None:
     if not inertia.estimated:  # the report shows these with the shafts only
         values["shaft_inertia"] = inertia.shafts
         values["load_inertia"] = inertia.load
-        values["inertia_ratio"] = inertia.total / inertia.motor
+        values["inertia_ratio"] = inertia.ratio
     return values
 
 

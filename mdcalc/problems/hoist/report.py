@@ -52,7 +52,7 @@ def report(result: Result) -> Report:
                 Quantity(
                     "brake_margin",
                     "Brake margin over the lowering torque",
-                    st.brake_torque / st.lowering_torque,
+                    st.brake_margin,
                     "",
                 ),
             ],
@@ -86,7 +86,7 @@ def report(result: Result) -> Report:
             Quantity(
                 "inertia_ratio",
                 "J/J1 (the lecture says 1.1…1.2)",
-                inertia.total / inertia.motor,
+                inertia.ratio,
                 "",
             ),
         ]
