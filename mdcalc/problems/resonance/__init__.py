@@ -27,8 +27,8 @@ Its files:
 - ``mathieu.py``: Parametric excitation: the Mathieu equation, its stability by Floquet theory.
 - ``solve.py``: The solver: the Methods, and the result.
 - ``report.py``: The report: the sections a resonance scene needs.
-- ``charts.py``: The charts of ``--plot``: mode shapes, the Campbell diagram, the Mathieu
-  stability chart (data only).
+- ``charts.py``: The charts of ``--plot``: the Campbell diagram and the Ince-Strutt chart of
+  the Mathieu equation (data only).
 """
 
 from __future__ import annotations

@@ -1,5 +1,5 @@
-"""The charts of ``--plot``: mode shapes, the Campbell diagram, the Mathieu
-stability chart (data only)."""
+"""The charts of ``--plot``: the Campbell diagram and the Ince-Strutt chart of
+the Mathieu equation (data only)."""
 
 from __future__ import annotations
 

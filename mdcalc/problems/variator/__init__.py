@@ -49,8 +49,9 @@ Its files:
   large-swing period.
 - ``solve.py``: The solver: the parts the case has, their Methods, and the result.
 - ``report.py``: The report: a section for each part the case has.
-- ``charts.py``: The charts of ``--plot``: absorber amplitudes, the periodic clutch load, the
-  pendulum (data only).
+- ``charts.py``: The charts of ``--plot``: absorber amplitudes, the clutch's loading
+  curve and its lines, the transfer functions, the clutch load over a stroke, the
+  anti-resonance design and the pendulum (data only).
 """
 
 from __future__ import annotations

@@ -1,5 +1,6 @@
-"""The charts of ``--plot``: absorber amplitudes, the periodic clutch load, the
-pendulum (data only)."""
+"""The charts of ``--plot``: absorber amplitudes, the clutch's loading curve and its lines,
+the transfer functions, the clutch load over a stroke, the anti-resonance design and
+the pendulum (data only)."""
 
 from __future__ import annotations
 
