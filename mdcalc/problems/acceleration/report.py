@@ -203,7 +203,7 @@ def _lecture_conventions(result: Result) -> str:
     scene = result.scene
     a_per_ratio, omega_d = result.lecture_coefficients
     peak_speed, peak_torque = scene.curve.peak(scene.limit)
-    physical = peak_torque * scene.final_drive * scene.efficiency / scene.radius / scene.mass
+    physical = scene.traction_coefficient(peak_torque)
     lecture_source = ""
     if math.isclose(a_per_ratio, 1.1):
         lecture_source = (
@@ -280,11 +280,11 @@ def _speed_table(scene: Scene, run: Run, step: float | None) -> Table:
         if slipping is None:
             label = f"shift {gear + 1}→{gear + 2}"
             v = max(v, 0.0)  # a car stopped within the shift stays stopped
-            a = -scene.resistance(v) / (scene.delta_free * scene.mass) if v > 0.0 else 0.0
+            a = -scene.coast_deceleration(v) if v > 0.0 else 0.0
         else:
             label = f"{gear + 1}"
             a = scene.acceleration(gear, v, slipping)
-            omega = scene.launch if slipping else scene.engine_speed(gear, v)
+            omega = scene.engine_omega(gear, v, slipping)
             engine = round(omega * RAD_S_TO_RPM)
         rows.append([t, v * 3.6, x, a, label, engine])
     return Table(

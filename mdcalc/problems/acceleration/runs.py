@@ -133,7 +133,7 @@ def lecture_run(scene: Scene, traction_coefficient: float, omega_d: float) -> di
     gears: list[tuple[float, float, float]] = []  # (v_start, v_end, t)
     v = 0.0
     for gear, u in enumerate(scene.ratios):
-        v_end = min(omega_d * scene.radius / (u * scene.final_drive), scene.target)
+        v_end = min(scene.road_speed(gear, omega_d), scene.target)  # (7.40)
         if gear == scene.gears - 1:
             v_end = scene.target  # top gear runs on to the target
         if v_end <= v:
@@ -169,7 +169,7 @@ def _piecewise_shift(
     scene: Scene, gear: int, v0: float, t: float, x: float, run: Run
 ) -> tuple[float, float]:
     """Constant deceleration over the shift at its value at the shift speed."""
-    d = scene.resistance(v0) / (scene.delta_free * scene.mass)
+    d = scene.coast_deceleration(v0)
     duration = scene.shift_time
     if d * duration >= v0:  # the car stops within the shift
         return 0.0, v0 * v0 / (2.0 * d)
@@ -238,7 +238,7 @@ def ode_run(scene: Scene, stints: list[Stint], rtol: float, dense: bool = False)
     ) -> tuple[float, float]:
         def rhs(time: float, y: np.ndarray) -> np.ndarray:
             v = max(y[0], 0.0)
-            return np.array([-scene.resistance(v) / (scene.delta_free * scene.mass), v])
+            return np.array([-scene.coast_deceleration(v), v])
 
         segment = advance(
             rhs,

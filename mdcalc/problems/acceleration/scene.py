@@ -51,10 +51,20 @@ class Scene:
         """ψ·m·g + k·v² [N]."""
         return self.psi * self.mass * self.g + self.drag * v * v
 
+    def engine_omega(self, gear: int, v: float, slipping: bool) -> float:
+        """The engine speed that drives: held at the launch speed while the clutch
+        slips, else the one the road speed gives in the gear [rad/s]."""
+        return self.launch if slipping else self.engine_speed(gear, v)
+
     def engine_force(self, gear: int, v: float, slipping: bool) -> float:
         """(7.35) with the engine curve: M_e·U_i·U_K·η/r [N]."""
-        omega = self.launch if slipping else self.engine_speed(gear, v)
+        omega = self.engine_omega(gear, v, slipping)
         return self.curve.torque(omega) * self.overall(gear) * self.efficiency / self.radius
+
+    def traction_coefficient(self, torque: float) -> float:
+        """(7.35): A/m = M·U_K·η/r/m, the traction per unit gear ratio and unit mass
+        that engine torque ``torque`` gives [m/s²]."""
+        return torque * self.final_drive * self.efficiency / self.radius / self.mass
 
     def adhesion_force(self, v: float) -> float:
         """φ·N on the driven axle; N shifts by m·a·h/L, a = (F - R)/(δ_0·m)."""
@@ -100,6 +110,10 @@ class Scene:
     def slipping_at(self, gear: int, v: float) -> bool:
         """The clutch slips while the road speed gives less than the launch engine speed."""
         return self.engine_speed(gear, v) < self.launch
+
+    def coast_deceleration(self, v: float) -> float:
+        """R/(δ_0·m): the deceleration with no traction, the clutch open [m/s²]."""
+        return self.resistance(v) / (self.delta_free * self.mass)
 
     def coast(self, v: float, duration: float) -> tuple[float, float]:
         """Speed after a shift of ``duration`` and the distance covered (closed form)."""

@@ -48,7 +48,7 @@ def lecture_coefficients(case: Case, scene: Scene) -> tuple[float, float]:
     if lecture.traction_coefficient is not None:
         a_per_ratio = lecture.traction_coefficient
     else:  # (7.35): A = M_max·U_K·η/r
-        a_per_ratio = peak_torque * scene.final_drive * scene.efficiency / scene.radius / scene.mass
+        a_per_ratio = scene.traction_coefficient(peak_torque)
     if lecture.shift_angular_speed is not None:
         omega_d = lecture.shift_angular_speed
     elif case.engine.max_torque_speed_rpm is not None:  # ω_D: the speed of maximum torque
