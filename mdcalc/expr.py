@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import ast
 import math
+import unicodedata
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 
@@ -149,9 +150,19 @@ def parse(text: str, variables: tuple[str, ...], parameters: Env | None = None) 
 
 
 def check_name(name: str, variables: tuple[str, ...] = ()) -> None:
-    """A parameter name must be a plain identifier that hides nothing."""
+    """A parameter name must be a plain identifier that hides nothing.
+
+    Python reads the names in a formula in their NFKC form (fullwidth ``ｏｍｅｇａ`` is
+    ``omega``, ``ℯ`` is ``e``), so a parameter written otherwise could never be
+    reached, or would silently stand for another name: it must be written in that
+    form already."""
     if not name.isidentifier() or name.startswith("_"):
         raise ExpressionError(f"parameter name {name!r} is not a plain identifier")
+    normal = unicodedata.normalize("NFKC", name)
+    if normal != name:
+        raise ExpressionError(
+            f"parameter name {name!r} is read as {normal!r} in a formula; write it as {normal!r}"
+        )
     if name in FUNCTIONS or name in CONSTANTS or name in variables:
         raise ExpressionError(f"parameter name {name!r} is taken by a function or variable")
 

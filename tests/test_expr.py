@@ -791,6 +791,30 @@ def test_cli_parameter_names_are_checked(cli, write_case):
         assert f"parameters.{name}" in ERROR_LINE.findall(result.stderr), result.stderr
 
 
+@pytest.mark.parametrize(
+    ("name", "folded"),
+    [("ｏｍｅｇａ", "omega"), ("ｗ0", "w0"), ("ℯ", "e"), ("ﬁ", "fi"), ("Ｍ0", "M0")],
+)
+def test_parameter_names_python_would_fold_are_refused(cli, write_case, name, folded):
+    # Python reads identifiers in a formula in NFKC: a fullwidth "ｏｍｅｇａ" is the variable
+    # omega, "ℯ" the constant e. Taken as written, the parameter's value was silently
+    # ignored (issue 20) or unreachable; now the name must be written as Python reads it.
+    with pytest.raises(ExpressionError, match=f"read as '{folded}'"):
+        check_name(name, VARIABLES)
+    data = _case_with("torque", "M0*(1 - omega/w0)")
+    data["parameters"] = {**data["parameters"], name: 1.0}
+    result = cli("mechanism", write_case(toml_dumps(data)))
+    assert result.exit_code == 2, (name, result.stdout, result.stderr)
+    assert_no_traceback(result)
+    assert f"parameters.{name}" in ERROR_LINE.findall(result.stderr), result.stderr
+    assert folded in result.stderr
+
+
+def test_the_folding_was_real():
+    # Why the rule above: without it the formula's "ｏｍｅｇａ" is the variable omega.
+    assert parse("ｏｍｅｇａ*2", ("omega",))(omega=3.0) == 6.0
+
+
 def test_computed_exponent_beyond_64_is_a_plain_power():
     # Only literal exponents are limited (9**9**9 must fail at once); a computed one is
     # an ordinary float power: 2**90 is fine, 2**-1e6 underflows to 0, 2**1e6 overflows.
