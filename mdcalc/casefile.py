@@ -7,9 +7,7 @@ All file I/O of case files lives here. Messages follow the
 from __future__ import annotations
 
 import difflib
-import os
 import re
-import tempfile
 import tomllib
 from dataclasses import dataclass
 from pathlib import Path
@@ -18,6 +16,7 @@ from typing import Any, TypeVar
 from pydantic import BaseModel, ValidationError
 
 from mdcalc.errors import InputError, Problem
+from mdcalc.files import read_regular, write_atomic
 from mdcalc.model import FieldError
 
 M = TypeVar("M", bound=BaseModel)
@@ -61,14 +60,7 @@ class CaseText:
 
 def read_case(path: Path) -> CaseText:
     """Read and parse a TOML case file; raise :class:`InputError` when it cannot."""
-    try:
-        raw = path.read_bytes()
-    except FileNotFoundError:
-        raise InputError(path, [Problem("no such file")]) from None
-    except IsADirectoryError:
-        raise InputError(path, [Problem("is a directory, not a case file")]) from None
-    except OSError as exc:
-        raise InputError(path, [Problem(f"cannot read: {exc.strerror}")]) from None
+    raw = read_regular(path)  # a regular file of bounded size, or InputError
     try:
         text = raw.decode("utf-8")
     except UnicodeDecodeError as exc:
@@ -178,30 +170,17 @@ def _takes_numbers(annotation: Any) -> bool:
 
 
 def write_toml_atomic(path: Path, data: dict[str, Any], force: bool = False) -> None:
-    """Write ``data`` as TOML to ``path`` atomically; never overwrite without ``force``."""
+    """Write ``data`` as TOML to ``path`` atomically; never overwrite without ``force``
+    (:func:`mdcalc.files.write_atomic`: exclusive creation, regular files only)."""
     import tomli_w
 
-    if path.exists() and not force:
-        raise InputError(path, [Problem("file exists; use --force to overwrite it")])
-    write_text_atomic(path, tomli_w.dumps(data))
+    write_atomic(path, tomli_w.dumps(data), replace=force)
 
 
 def write_text_atomic(path: Path, text: str) -> None:
-    """Write ``text`` through a temporary file in the same folder and a rename, so a
-    reader never sees half a file; missing folders under ``path`` are made."""
-    directory = path.parent if str(path.parent) else Path(".")
-    try:
-        directory.mkdir(parents=True, exist_ok=True)
-        fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=directory)
-    except OSError as exc:
-        raise InputError(path, [Problem(f"cannot write: {exc.strerror}")]) from None
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8") as handle:
-            handle.write(text)
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
+    """Write ``text`` to ``path`` atomically, replacing a regular file that is there
+    (the results of ``run --out`` and ``sweep --out``, written again on each run)."""
+    write_atomic(path, text, replace=True)
 
 
 # ------------------------------------------------------------------ error messages

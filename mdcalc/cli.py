@@ -131,7 +131,7 @@ def run_problem(
         if plot is not None and charts:
             from mdcalc.plot import render
 
-            render(charts, plot, title=report.title)
+            render(charts, plot, title=report.title, replace=force)
             _stderr(f"wrote {plot}")
         if save is not None:
             _save(run, save, force)

@@ -14,6 +14,7 @@ from pathlib import Path
 from typing import Literal
 
 from mdcalc.errors import InputError, Problem
+from mdcalc.files import write_atomic
 
 FORMATS = (".png", ".svg", ".pdf")
 
@@ -85,12 +86,10 @@ def matplotlib_missing() -> str | None:
     return None
 
 
-def render(charts: Sequence[Chart], path: Path, title: str = "") -> None:
+def render(charts: Sequence[Chart], path: Path, title: str = "", replace: bool = True) -> None:
     """Draw ``charts`` one under another into ``path`` (its suffix is the format),
-    atomically: a temporary file in the same folder, then a rename."""
-    import os
-    import tempfile
-
+    atomically (:func:`mdcalc.files.write_atomic`); ``replace`` False: only if no
+    file is there."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -102,19 +101,13 @@ def render(charts: Sequence[Chart], path: Path, title: str = "") -> None:
         _draw(ax, chart)
     if title:
         figure.suptitle(title, fontsize=11)
-    directory = path.parent if str(path.parent) else Path(".")
-    try:
-        directory.mkdir(parents=True, exist_ok=True)
-        fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=path.suffix, dir=directory)
-    except OSError as exc:
-        raise InputError(path, [Problem(f"--plot: cannot write: {exc.strerror}")]) from None
-    os.close(fd)
-    try:
-        figure.savefig(tmp, format=path.suffix.lower().lstrip("."), dpi=120)
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
+    fmt = path.suffix.lower().lstrip(".")
+    write_atomic(
+        path,
+        lambda tmp: figure.savefig(tmp, format=fmt, dpi=120),
+        replace=replace,
+        option="--plot: ",
+    )
 
 
 _STYLES = {"line": "-", "dashed": "--", "dotted": ":"}
