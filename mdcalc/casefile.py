@@ -69,6 +69,8 @@ def read_case(path: Path) -> CaseText:
         raise InputError(path, [problem]) from None
     try:
         data = tomllib.loads(text)
+    except RecursionError:
+        raise InputError(path, [Problem("TOML nested too deeply for a case file")]) from None
     except tomllib.TOMLDecodeError as exc:
         # Python 3.11's tomllib carries the position only inside its message text.
         message = str(exc)
@@ -84,7 +86,38 @@ def read_case(path: Path) -> CaseText:
         raise InputError(
             path, [Problem(f"TOML syntax: {reason}", line=line, column=column)]
         ) from None
+    except ValueError as exc:  # an integer of more than 4300 digits, say
+        raise InputError(
+            path, [Problem(f"TOML value out of range: {str(exc).split(':')[0]}")]
+        ) from None
+    if _depth(data) > MAX_DEPTH:
+        raise InputError(
+            path,
+            [
+                Problem(
+                    f"tables and lists nested more than {MAX_DEPTH} deep; a case file needs a few"
+                )
+            ],
+        )
     return CaseText(path, text, data)
+
+
+#: How deep tables and lists may nest in a case file (the deepest shipped case: 3).
+MAX_DEPTH = 16
+
+
+def _depth(data: Any) -> int:
+    """How deep ``data`` nests, counted without recursion (stops past MAX_DEPTH)."""
+    deepest, stack = 0, [(data, 1)]
+    while stack:
+        node, depth = stack.pop()
+        deepest = max(deepest, depth)
+        if depth > MAX_DEPTH:
+            break
+        children = node.values() if isinstance(node, dict) else node
+        if isinstance(node, dict | list):
+            stack.extend((child, depth + 1) for child in children if isinstance(child, dict | list))
+    return deepest
 
 
 def validate(model: type[M], case: CaseText) -> M:

@@ -55,3 +55,35 @@ def test_a_bad_expectation_names_its_key_in_the_expect_table(write_case, cli):
     result = cli("braking", path)
     assert result.exit_code == 2
     assert result.stderr.startswith(f"{path}:{line}: error: expect.lecture_time.abs: got -1.0")
+
+
+# Inputs that crashed the reader (exit 70) before issue 20: each is exit 2, one line.
+HEAD = 'problem = "coupling"\n'
+
+
+@pytest.mark.parametrize(
+    ("body", "says"),
+    [
+        ("x = " + "[" * 5000 + "]" * 5000 + "\n", "nested too deeply"),
+        ("x = " + "{a=" * 3000 + "1" + "}" * 3000 + "\n", "nested too deeply"),
+        (".".join(["a"] * 10_000) + " = 1\n", "nested more than 16 deep"),
+        ("[" + ".".join(["t"] * 40) + "]\nx = 1\n", "nested more than 16 deep"),
+        ("x = " + "9" * 4301 + "\n", "Exceeds the limit (4300 digits)"),
+    ],
+    ids=["list-5000", "inline-table-3000", "dotted-key-10000", "table-header-40", "int-4301"],
+)
+def test_pathological_toml_is_a_plain_input_error(write_case, cli, body, says):
+    result = cli("coupling", write_case(HEAD + body))
+    assert result.exit_code == 2, result.stderr[-300:]
+    lines = result.stderr.strip().splitlines()
+    assert len(lines) == 1 and "Traceback" not in result.stderr
+    assert says in lines[0]
+
+
+def test_the_deepest_shipped_case_is_well_inside_the_depth_limit():
+    import tomllib
+
+    from mdcalc.casefile import MAX_DEPTH, _depth
+
+    deepest = max(_depth(tomllib.loads(p.read_text("utf-8"))) for p in CASES.rglob("*.toml"))
+    assert deepest <= MAX_DEPTH // 2, deepest
