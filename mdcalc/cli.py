@@ -177,7 +177,7 @@ def _check_outputs(case: Path, plot: Path | None, save: Path | None, force: bool
 
 def _charts(run: Any, plot: Path) -> list[Any]:
     make = getattr(run.module, "charts", None)
-    charts = make(run.result) if make is not None else []
+    charts = make(run.result) if make is not None and run.result is not None else []
     if not charts:
         why = "this problem draws no plot" if make is None else "this scene has no curve to draw"
         _stderr(f"{plot}: warning: --plot: {why}; no file written")

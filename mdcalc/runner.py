@@ -80,12 +80,39 @@ def solve_text(case: CaseText, expected_problem: str | None = None) -> Run:
         )
     module = spec.load()
     model = validate(module.Case, case)
-    result = module.solve(model)
-    report = module.report(result)
+    result: Any
+    try:
+        result = module.solve(model)
+        report = module.report(result)
+    except (ArithmeticError, ValueError) as exc:
+        if not out_of_float_range(exc):
+            raise
+        # A valid scene whose numbers leave double precision: no answer, said plainly
+        # (exit 3), never an internal error.
+        result = None
+        title = getattr(model, "title", None) or spec.name
+        report = Report(spec.name, title, status="no-answer", message=_out_of_range(exc))
     report.case = str(path)
     if case.conversions:
         report.sections.insert(0, units_section(case.conversions))
     return Run(report, result, module, case)
+
+
+def out_of_float_range(exc: BaseException) -> bool:
+    """Is ``exc`` floating point giving up on a valid scene's magnitudes: an overflow,
+    a division by a number that underflowed to 0, math's domain error (a square root
+    of a difference that rounding made negative)?"""
+    if isinstance(exc, ArithmeticError):
+        return True
+    return isinstance(exc, ValueError) and str(exc) == "math domain error"
+
+
+def _out_of_range(exc: BaseException) -> str:
+    return (
+        "the scene's numbers leave the range of floating-point arithmetic "
+        f"({type(exc).__name__}: {exc}); an input is far outside this problem's "
+        "physical range"
+    )
 
 
 def units_section(conversions: list[Conversion]) -> Table:

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import os
+import re
 
 import pytest
 
@@ -166,14 +167,14 @@ def test_no_answer_exits_3_with_reason():
 def test_internal_error_exits_70_with_one_line(cli, monkeypatch):
     from mdcalc.problems import braking
 
-    def broken(case):
-        raise ZeroDivisionError("boom")
+    def broken(case):  # not arithmetic: that is a scene out of float range (exit 3)
+        raise RuntimeError("boom")
 
     monkeypatch.setattr(braking, "solve", broken)
     result = cli("braking", LECTURE)
     assert result.exit_code == 70
     lines = result.stderr.strip().splitlines()
-    assert len(lines) == 1 and "internal error: ZeroDivisionError: boom" in lines[0]
+    assert len(lines) == 1 and "internal error: RuntimeError: boom" in lines[0]
     result = cli("braking", LECTURE, "--debug")
     assert result.exit_code == 70
     assert "Traceback" in result.stderr
@@ -246,3 +247,28 @@ def test_closed_pipe_is_not_an_internal_error():
     )
     assert "internal error" not in proc.stderr
     assert proc.stdout == '{\n  "mdcal'
+
+
+# Valid scenes whose numbers leave double precision (issue 20's probe of shipped cases
+# pushed to 1e-300 or 5e-324, or into exp overflow): exit 3 in one plain line, never
+# exit 70, and no NaN or inf in the output.
+OUT_OF_RANGE = [
+    ("coupling", "extreme/coupling_heavily_damped_pulse.toml", "damping", "5e5"),
+    ("coupling", "extreme/coupling_heavily_damped_pulse.toml", "driven_inertia", "5e-324"),
+    ("mechanism", "mechanism/crank_press.toml", "w0", "1e-12"),
+    ("hoist", "hoist/crane.toml", "lifting_speed", "1e-300"),
+    ("hoist", "hoist/crane.toml", "motor_speed_rpm", "1e-300"),
+]
+
+
+@pytest.mark.parametrize(("problem", "case", "key", "value"), OUT_OF_RANGE)
+def test_a_scene_beyond_float_range_is_no_answer(cli, write_case, problem, case, key, value):
+    text = (CASES / case).read_text(encoding="utf-8")
+    edited = re.sub(rf"(?m)^{key} = .*$", f"{key} = {value}", text, count=1)
+    assert edited != text
+    for json_flag in ([], ["--json"]):
+        result = cli(problem, write_case(edited), *json_flag)
+        assert result.exit_code == 3, (result.stdout, result.stderr)
+        lines = result.stderr.strip().splitlines()
+        assert len(lines) == 1 and "range of floating-point arithmetic" in lines[0], lines
+        assert not re.search(r"\b(nan|inf|NaN|Infinity)\b", result.stdout)
