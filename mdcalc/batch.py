@@ -64,6 +64,8 @@ class RunOptions:
     #: a batch takes 50 µs, not the 2 ms of a single run: coarser microsecond
     #: figures, ten times the files per second.
     timing_budget: float = 5e-5
+    #: Each file's time limit [s] (None: none).
+    time_limit: float | None = 60.0
 
 
 def _error_json(path: str, status: str, problems: list[dict[str, object]]) -> str:
@@ -86,7 +88,7 @@ def run_file(path: str, options: RunOptions) -> Outcome:
     methods.MIN_TIMING_SECONDS = options.timing_budget
     start = time.perf_counter()
     try:
-        report = run_case(Path(path))
+        report = run_case(Path(path), time_limit=options.time_limit)
         outcome = Outcome(
             path,
             EXIT_OK if report.status == "ok" else EXIT_NO_ANSWER,

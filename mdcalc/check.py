@@ -7,9 +7,11 @@ from __future__ import annotations
 
 from collections.abc import Iterable
 from dataclasses import dataclass, field
+from functools import partial
 from pathlib import Path
 
 from mdcalc.casefile import read_case
+from mdcalc.core.budget import DEFAULT_SECONDS
 from mdcalc.errors import InputError
 from mdcalc.model import CaseBase, Expectation
 from mdcalc.pool import collect as collect_cases
@@ -74,13 +76,15 @@ def tolerance_text(expectation: Expectation) -> str:
     return ", ".join(parts) or "exact"
 
 
-def check_file(path: Path, outcome: CheckOutcome) -> None:
+def check_file(
+    path: Path, outcome: CheckOutcome, time_limit: float | None = DEFAULT_SECONDS
+) -> None:
     try:
         case = read_case(path)
         if "expect" not in case.data:
             outcome.files_skipped += 1
             return
-        report = run_text(case)
+        report = run_text(case, time_limit=time_limit)
         # run_text validated the whole file, so the [expect] table is valid here.
         expectations = CaseBase.model_validate({"expect": case.data["expect"]}).expect or {}
     except InputError as exc:
@@ -107,9 +111,9 @@ def check_file(path: Path, outcome: CheckOutcome) -> None:
         )
 
 
-def check_one(path: Path) -> CheckOutcome:
+def check_one(path: Path, time_limit: float | None = DEFAULT_SECONDS) -> CheckOutcome:
     outcome = CheckOutcome()
-    check_file(path, outcome)
+    check_file(path, outcome, time_limit)
     return outcome
 
 
@@ -124,6 +128,9 @@ def merge(outcomes: Iterable[CheckOutcome]) -> CheckOutcome:
     return total
 
 
-def check_paths(paths: Iterable[Path], jobs: int = 1) -> CheckOutcome:
-    """Check every case file under ``paths``; ``jobs`` processes (results in file order)."""
-    return merge(pool_map(check_one, collect(paths), jobs))
+def check_paths(
+    paths: Iterable[Path], jobs: int = 1, time_limit: float | None = DEFAULT_SECONDS
+) -> CheckOutcome:
+    """Check every case file under ``paths``; ``jobs`` processes (results in file order),
+    each file under ``time_limit`` seconds."""
+    return merge(pool_map(partial(check_one, time_limit=time_limit), collect(paths), jobs))

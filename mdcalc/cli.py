@@ -35,6 +35,22 @@ app = typer.Typer(
 
 JsonOption = Annotated[bool, typer.Option("--json", help="Write the results as JSON.")]
 DebugOption = Annotated[bool, typer.Option("--debug", help="Show the traceback of a bug.")]
+#: mdcalc.core.budget.DEFAULT_SECONDS (not imported here: the CLI loads it only to run).
+DEFAULT_TIME_LIMIT = 60.0
+TimeLimitOption = Annotated[
+    float,
+    typer.Option(
+        "--time-limit",
+        min=0.0,
+        metavar="SECONDS",
+        help="Stop a case (a sweep point) after this long: a slow method is skipped, "
+        "a scene that cannot finish is no answer (exit 3). 0: no limit.",
+    ),
+]
+
+
+def _limit(seconds: float) -> float | None:
+    return seconds if seconds > 0 else None
 
 
 def complete_case(incomplete: str) -> list[str]:
@@ -113,6 +129,7 @@ def run_problem(
     plot: Path | None = None,
     save: Path | None = None,
     force: bool = False,
+    time_limit: float | None = DEFAULT_TIME_LIMIT,
 ) -> int:
     def body() -> int:
         from mdcalc.report import render_rich, to_json
@@ -121,7 +138,7 @@ def run_problem(
         from mdcalc.casefile import read_case
         from mdcalc.runner import solve_text
 
-        run = solve_text(read_case(case), expected_problem=spec.name)
+        run = solve_text(read_case(case), expected_problem=spec.name, time_limit=time_limit)
         report = run.report
         charts = _charts(run, plot) if plot is not None else []
         if as_json:
@@ -231,9 +248,12 @@ def _make_problem_command(spec: ProblemSpec) -> Callable[..., None]:
         plot: PlotOption = None,
         save: SaveOption = None,
         force: ForceOption = False,
+        time_limit: TimeLimitOption = DEFAULT_TIME_LIMIT,
         debug: DebugOption = False,
     ) -> None:
-        raise typer.Exit(run_problem(spec, case, as_json, debug, plot, save, force))
+        raise typer.Exit(
+            run_problem(spec, case, as_json, debug, plot, save, force, _limit(time_limit))
+        )
 
     command.__doc__ = spec.summary
     return command
@@ -265,6 +285,7 @@ def check_command(
         list[Path], typer.Argument(help="Case files or folders.", autocompletion=complete_case)
     ],
     jobs: JobsOption = 1,
+    time_limit: TimeLimitOption = DEFAULT_TIME_LIMIT,
     debug: DebugOption = False,
 ) -> None:
     """Run every case file that has an [expect] table; exit 1 if any value is off."""
@@ -275,7 +296,8 @@ def check_command(
         from mdcalc.check import check_paths, collect
         from mdcalc.pool import default_jobs
 
-        outcome = check_paths(paths, jobs or default_jobs(len(collect(paths))))
+        workers = jobs or default_jobs(len(collect(paths)))
+        outcome = check_paths(paths, workers, _limit(time_limit))
         table = Table(title="mdcalc check", title_justify="left")
         for column in ("file", "result", "expected", "got", "tolerance", ""):
             table.add_column(column, overflow="fold")
@@ -315,6 +337,7 @@ def run_command(
     as_json: Annotated[
         bool, typer.Option("--json", help="Write each result as one JSON line on stdout.")
     ] = False,
+    time_limit: TimeLimitOption = DEFAULT_TIME_LIMIT,
     debug: DebugOption = False,
 ) -> None:
     """Run many case files in a process pool; a summary at the end.
@@ -339,7 +362,11 @@ def run_command(
         text = not as_json and out is None
         width = shutil.get_terminal_size().columns if sys.stdout.isatty() else 140
         options = RunOptions(
-            json=as_json or out is not None, text=text, color=_color(), width=width
+            json=as_json or out is not None,
+            text=text,
+            color=_color(),
+            width=width,
+            time_limit=_limit(time_limit),
         )
         counts: Counter[str] = Counter()
         failed: list[tuple[str, str]] = []
@@ -408,6 +435,7 @@ def sweep_command(
         Path | None, typer.Option("--out", help="Write the table to FILE.csv or FILE.json.")
     ] = None,
     jobs: JobsOption = 0,
+    time_limit: TimeLimitOption = DEFAULT_TIME_LIMIT,
     debug: DebugOption = False,
 ) -> None:
     """Run one case over a grid of values: vectorized for closed forms, else in a pool.
@@ -423,7 +451,9 @@ def sweep_command(
             raise InputError(out, [Problem("--out takes a .csv or a .json file")])
         sweep = plan(case, [parse_vary(v) for v in vary])
         with _progress(sweep.points) as advance:
-            table = evaluate(sweep, result or [], jobs or default_jobs(sweep.points), advance)
+            table = evaluate(
+                sweep, result or [], jobs or default_jobs(sweep.points), advance, _limit(time_limit)
+            )
         for message in table.messages[:20]:
             _stderr(message)
         if len(table.messages) > 20:

@@ -8,6 +8,12 @@ error of each key result against the reference method. The result is a
 A method returns ``{key: value}`` for the key results it computes, or raises
 :class:`NotApplicable` with the reason (the row then shows the reason instead of
 numbers: a closed form outside its validity, an ODE run skipped as too long).
+
+Each method runs on a share of the case's time budget (:mod:`mdcalc.core.budget`).
+One that runs over is a row "skipped: over the time budget"; if that is the
+reference, the finished method of the highest ``accuracy`` stands in for it and
+its row says so; with none, :class:`~mdcalc.core.budget.OverBudget` goes up to the
+runner (no answer, exit 3).
 """
 
 from __future__ import annotations
@@ -18,6 +24,7 @@ import time
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 
+from mdcalc.core import budget
 from mdcalc.report import MethodQuantity, MethodRow, MethodsTable
 
 #: Cheap methods are repeated until this much time has passed, so that a
@@ -39,6 +46,9 @@ class Method:
     #: Modules the method imports; loaded before timing so that a one-off import
     #: (scipy.integrate: about 0.5 s) is not charged to the method's run time.
     imports: tuple[str, ...] = ()
+    #: May this method stand in for a reference that ran over the time budget, and
+    #: how good is it (the finished method of the highest accuracy is taken)? 0: no.
+    accuracy: int = 0
 
 
 def timed(run: Callable[[], Mapping[str, float]]) -> tuple[Mapping[str, float], float]:
@@ -77,11 +87,21 @@ def compare(
         raise ValueError(f"methods table {key!r} needs exactly one reference method")
     rows: list[MethodRow] = []
     reference_values: Mapping[str, float] = {}
+    over: Method | None = None  # the reference, had it run over the budget
     for method in methods:
         for module in method.imports:
             importlib.import_module(module)
+        granted = 0.0
         try:
-            values, seconds = timed(method.run)
+            with budget.share() as granted:
+                values, seconds = timed(method.run)
+        except budget.OverBudget:
+            note = f"skipped: over the time budget ({_granted(granted)} for this method)"
+            _cut(f"{title}: {method.name}: {note}")
+            if method.reference:
+                over = method
+            rows.append(MethodRow(method.name, {}, {}, None, False, note, method.imports))
+            continue
         except (NotApplicable, ArithmeticError) as reason:
             # A method that breaks down on this scene (an ODE row that does not
             # settle, say) is a finding of the table, not a failure of the run --
@@ -108,6 +128,8 @@ def compare(
                 method.imports,
             )
         )
+    if over is not None:
+        reference_values = _stand_in(title, over, methods, rows)
     for row in rows:
         for q in quantities:
             value = row.values.get(q.key)
@@ -115,3 +137,37 @@ def compare(
             if value is not None and ref is not None and not row.reference:
                 row.rel_errors[q.key] = relative_error(value, ref)
     return MethodsTable(title, key, quantities, rows)
+
+
+def _stand_in(
+    title: str, over: Method, methods: list[Method], rows: list[MethodRow]
+) -> Mapping[str, float]:
+    """Make the most accurate finished method the reference in place of ``over``."""
+    finished = [
+        (method.accuracy, index)
+        for index, (method, row) in enumerate(zip(methods, rows, strict=True))
+        if method.accuracy > 0 and row.seconds is not None
+    ]
+    if not finished:
+        raise budget.OverBudget(
+            f"{title}: the reference ({over.name}) ran over the time budget and no other "
+            "method accurate enough to stand in for it finished"
+        )
+    _, index = max(finished)
+    row = rows[index]
+    row.reference = True
+    row.note = "; ".join(
+        n for n in (row.note, f"reference in place of {over.name} (over the time budget)") if n
+    )
+    _cut(f"{title}: {row.method} is the reference in place of {over.name}")
+    return {k: v for k, v in row.values.items() if v is not None}
+
+
+def _granted(seconds: float) -> str:
+    return "no time left" if seconds <= 0 else f"{seconds:.3g} s"
+
+
+def _cut(what: str) -> None:
+    now = budget.current()
+    if now is not None:
+        now.cut.append(what)

@@ -17,7 +17,8 @@ JSON layout (``format`` 1, stable; documented in the README)::
      "title": "...", "status": "ok" | "no-answer", "message": null | "...",
      "results": {"<key>": {"value": 35.3, "unit": "m", "label": "..."}, ...},
      "sections": [{"kind": "quantities" | "table" | "methods", ...}, ...],
-     "notes": [{"level": "warning" | "info", "text": "..."}]}
+     "notes": [{"level": "warning" | "info", "text": "..."}],
+     "budget": {"time_limit_s": 60.0 | null, "cut": ["<what ran over>", ...]}}
 """
 
 from __future__ import annotations
@@ -114,6 +115,9 @@ class Report:
     status: Status = "ok"
     message: str | None = None
     case: str = ""
+    #: The time limit the case ran under [s] (None: none) and what it cut.
+    time_limit: float | None = None
+    cut: list[str] = field(default_factory=list)
 
     def results(self) -> dict[str, Quantity]:
         """Every quantity by key, plus ``status`` (for ``[expect] status = ...``)."""
@@ -164,6 +168,30 @@ def format_seconds(seconds: float | None) -> str:
     if seconds < 1:
         return f"{seconds * 1e3:.3g} ms"
     return f"{seconds:.3g} s"
+
+
+def first_non_finite(report: Report) -> str | None:
+    """The first place of ``report`` holding NaN or an infinity ("key = inf"), or None."""
+
+    def bad(value: Any) -> bool:
+        return isinstance(value, float) and not math.isfinite(value)
+
+    for section in report.sections:
+        if isinstance(section, Quantities):
+            for q in section.items:
+                if bad(q.value):
+                    return f"{q.key} = {q.value}"
+        elif isinstance(section, Table):
+            for row in section.rows:
+                for column, value in zip(section.columns, row, strict=False):
+                    if bad(value):
+                        return f"{section.key}: {column.label} = {value}"
+        else:
+            for method in section.rows:
+                for key, number in (*method.values.items(), *method.rel_errors.items()):
+                    if bad(number):
+                        return f"{section.key}: {method.method}: {key} = {number}"
+    return None
 
 
 # ----------------------------------------------------------------------------- JSON
@@ -238,6 +266,7 @@ def to_json(report: Report, indent: int | None = 2) -> str:
         },
         "sections": [section_json(s) for s in report.sections],
         "notes": [{"level": n.level, "text": n.text} for n in report.notes],
+        "budget": {"time_limit_s": report.time_limit, "cut": list(report.cut)},
     }
     separators = (",", ":") if indent is None else None
     return json.dumps(

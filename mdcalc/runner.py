@@ -6,14 +6,16 @@ Shared by the problem commands and ``mdcalc check``; raises
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 from mdcalc.casefile import CaseText, Conversion, dotted, read_case, validate
+from mdcalc.core import budget
 from mdcalc.errors import InputError, Problem
 from mdcalc.problems import PROBLEMS, ProblemSpec
-from mdcalc.report import Column, Report, Table
+from mdcalc.report import Column, Note, Report, Table, first_non_finite
 
 
 def problem_of(case: CaseText) -> ProblemSpec:
@@ -53,17 +55,30 @@ class Run:
     case: CaseText
 
 
-def run_case(path: Path, expected_problem: str | None = None) -> Report:
-    return run_text(read_case(path), expected_problem)
+def run_case(
+    path: Path,
+    expected_problem: str | None = None,
+    time_limit: float | None = budget.DEFAULT_SECONDS,
+) -> Report:
+    return run_text(read_case(path), expected_problem, time_limit)
 
 
-def run_text(case: CaseText, expected_problem: str | None = None) -> Report:
+def run_text(
+    case: CaseText,
+    expected_problem: str | None = None,
+    time_limit: float | None = budget.DEFAULT_SECONDS,
+) -> Report:
     """Validate, solve and report a case file already read."""
-    return solve_text(case, expected_problem).report
+    return solve_text(case, expected_problem, time_limit).report
 
 
-def solve_text(case: CaseText, expected_problem: str | None = None) -> Run:
-    """Validate, solve and report a case file already read, keeping the result."""
+def solve_text(
+    case: CaseText,
+    expected_problem: str | None = None,
+    time_limit: float | None = budget.DEFAULT_SECONDS,
+) -> Run:
+    """Validate, solve and report a case file already read, keeping the result
+    (:func:`solve_model`: the time limit, and no answer where floats give up)."""
     path = case.path
     spec = problem_of(case)
     if expected_problem is not None and spec.name != expected_problem:
@@ -80,38 +95,65 @@ def solve_text(case: CaseText, expected_problem: str | None = None) -> Run:
         )
     module = spec.load()
     model = validate(module.Case, case)
-    result: Any
-    try:
-        result = module.solve(model)
-        report = module.report(result)
-    except (ArithmeticError, ValueError) as exc:
-        if not out_of_float_range(exc):
-            raise
-        # A valid scene whose numbers leave double precision: no answer, said plainly
-        # (exit 3), never an internal error.
-        result = None
-        title = getattr(model, "title", None) or spec.name
-        report = Report(spec.name, title, status="no-answer", message=_out_of_range(exc))
+    result, report = solve_model(spec.name, module, model, time_limit)
     report.case = str(path)
     if case.conversions:
         report.sections.insert(0, units_section(case.conversions))
     return Run(report, result, module, case)
 
 
+def solve_model(
+    problem: str, module: Any, model: Any, time_limit: float | None = budget.DEFAULT_SECONDS
+) -> tuple[Any, Report]:
+    """Solve a validated case and build its report, under ``time_limit`` seconds (None:
+    no limit) with numpy's and scipy's warnings silenced. A valid scene that overflows,
+    runs over the budget or ends in a non-finite number gives (None, a no-answer report
+    saying why): exit 3, never an internal error."""
+    result: Any = None
+    why: str | None = None
+    with budget.limit(time_limit) as limit, warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)  # overflow in scipy's steps...
+        try:
+            result = module.solve(model)
+            report = module.report(result)
+            if (place := first_non_finite(report)) is not None:
+                why = _out_of_range(f"a result is not a finite number: {place}")
+        except budget.OverBudget as exc:
+            where = f" ({exc})" if str(exc) else ""
+            why = (
+                f"the scene did not finish within the time budget of {limit.seconds:g} s"
+                f"{where}; raise it with --time-limit"
+            )
+        except (ArithmeticError, ValueError) as exc:
+            if not out_of_float_range(exc):
+                raise
+            why = _out_of_range(f"{type(exc).__name__}: {exc}")
+    if why is not None:
+        result = None
+        title = getattr(model, "title", None) or problem
+        report = Report(problem, title, status="no-answer", message=why)
+    report.time_limit = time_limit
+    report.cut = list(limit.cut)
+    report.notes.extend(Note("warning", f"time budget: {what}") for what in limit.cut)
+    return result, report
+
+
 def out_of_float_range(exc: BaseException) -> bool:
     """Is ``exc`` floating point giving up on a valid scene's magnitudes: an overflow,
     a division by a number that underflowed to 0, math's domain error (a square root
-    of a difference that rounding made negative)?"""
+    of a difference that rounding made negative), math.fsum meeting inf - inf?"""
     if isinstance(exc, ArithmeticError):
         return True
-    return isinstance(exc, ValueError) and str(exc) == "math domain error"
+    text = str(exc)
+    return isinstance(exc, ValueError) and (
+        text == "math domain error" or text.endswith(" in fsum")
+    )
 
 
-def _out_of_range(exc: BaseException) -> str:
+def _out_of_range(what: str) -> str:
     return (
-        "the scene's numbers leave the range of floating-point arithmetic "
-        f"({type(exc).__name__}: {exc}); an input is far outside this problem's "
-        "physical range"
+        f"the scene's numbers leave the range of floating-point arithmetic ({what}); "
+        "an input is far outside this problem's physical range"
     )
 
 

@@ -21,8 +21,9 @@ from pathlib import Path
 from typing import Any
 
 from mdcalc.casefile import CaseText, is_integer_field, read_case, unit_of, validate
+from mdcalc.core.budget import DEFAULT_SECONDS
 from mdcalc.errors import EXIT_BUG, EXIT_INPUT, EXIT_NO_ANSWER, EXIT_OK, InputError, Problem
-from mdcalc.runner import problem_of
+from mdcalc.runner import problem_of, solve_model
 
 #: A grid larger than this is refused: 10⁷ points of a vectorized problem take
 #: about 1 GB of columns; of a per-point problem, hours.
@@ -231,17 +232,20 @@ def _numeric(report: Any) -> dict[str, tuple[float, str]]:
     }
 
 
-def point_results(args: tuple[str, str, dict[str, Any]]) -> tuple[int, dict[str, Any], str]:
-    """One grid point as a case of its own: (exit code, {key: value}, message)."""
+def point_results(
+    args: tuple[str, str, dict[str, Any], float | None],
+) -> tuple[int, dict[str, Any], str]:
+    """One grid point as a case of its own, under its time limit: (exit code,
+    {key: value}, message)."""
     from mdcalc import methods
     from mdcalc.problems import PROBLEMS
 
     methods.MIN_TIMING_SECONDS = 2e-4  # as in batch runs: the timings are not kept
-    path, problem, data = args
+    path, problem, data, time_limit = args
     module = PROBLEMS[problem].load()
     try:
         model = validate(module.Case, CaseText(Path(path), "", data))
-        report = module.report(module.solve(model))
+        _, report = solve_model(problem, module, model, time_limit)
     except InputError as exc:
         return EXIT_INPUT, {}, "; ".join(p.format(path) for p in exc.problems)
     except Exception as exc:
@@ -252,7 +256,9 @@ def point_results(args: tuple[str, str, dict[str, Any]]) -> tuple[int, dict[str,
     return EXIT_OK, values, ""
 
 
-def choose_results(sweep: Plan, results: Sequence[str]) -> tuple[list[str], dict[str, str]]:
+def choose_results(
+    sweep: Plan, results: Sequence[str], time_limit: float | None = DEFAULT_SECONDS
+) -> tuple[list[str], dict[str, str]]:
     """The result columns and their units, from a run of the base case.
 
     By default the key results: the quantities of the report's Methods tables (all
@@ -261,7 +267,8 @@ def choose_results(sweep: Plan, results: Sequence[str]) -> tuple[list[str], dict
     from mdcalc.report import MethodsTable
 
     module = _module(sweep.problem)
-    report = module.report(module.solve(validate(module.Case, sweep.case)))
+    model = validate(module.Case, sweep.case)
+    _, report = solve_model(sweep.problem, module, model, time_limit)
     numeric = _numeric(report)
     units = {key: unit for key, (_, unit) in numeric.items()}
     unknown = [k for k in results if k not in numeric]
@@ -287,15 +294,17 @@ def evaluate(
     results: Sequence[str],
     jobs: int,
     on_done: Callable[[int], None] | None = None,
+    time_limit: float | None = DEFAULT_SECONDS,
 ) -> Table:
-    """Every grid point: vectorized where the problem offers it, else point by point.
+    """Every grid point: vectorized where the problem offers it, else point by point,
+    each point under ``time_limit`` seconds.
 
     ``on_done(n)`` is told of every ``n`` points finished (for a progress bar).
     """
     import numpy as np
 
     module = _module(sweep.problem)
-    wanted, units = choose_results(sweep, results)
+    wanted, units = choose_results(sweep, results, time_limit)
     keys = [v.key for v in sweep.varies]
     key_units = {v.key: unit_of(module.Case, v.loc) for v in sweep.varies}
     units = {**key_units, **{k: units.get(k, "") for k in wanted}}
@@ -316,7 +325,7 @@ def evaluate(
     from mdcalc.pool import pool_map
 
     path = str(sweep.case.path)
-    tasks = [(path, sweep.problem, sweep.data_at(point)) for point in sweep.grid()]
+    tasks = [(path, sweep.problem, sweep.data_at(point), time_limit) for point in sweep.grid()]
     for key in wanted:
         columns[key] = np.full(sweep.points, np.nan)
     status = np.zeros(sweep.points, dtype=int)

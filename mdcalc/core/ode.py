@@ -8,6 +8,7 @@ up to its end time or to the first terminal event, and returns where it stopped.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
@@ -75,6 +76,16 @@ def advance(
     import numpy as np
     from scipy.integrate import solve_ivp
 
+    from mdcalc.core import budget
+
+    y0 = np.asarray(y0, dtype=float)
+    if not (np.all(np.isfinite(y0)) and math.isfinite(t0)):
+        raise ArithmeticError(f"the state at t = {t0:.6g} s is not a finite number")
+
+    def checked(t: float, y: np.ndarray) -> Any:  # the budget, at every evaluation
+        budget.check()
+        return rhs(t, y)
+
     events: list[Any] = []
     for function, direction in terminal:
         events.append(_event(function, direction, True))
@@ -83,7 +94,7 @@ def advance(
     if t1 <= t0:
         return Segment(t0, np.array(y0, dtype=float), None, 0, [])
     solution = solve_ivp(
-        rhs,
+        checked,
         (t0, t1),
         y0,
         method=method,

@@ -353,10 +353,20 @@ def solve(case: Case) -> Result:
         )
     if scene.drag > 0.0:
         methods.append(
-            Method("ODE RK45, rtol 1e-3", lambda: ode_stop(scene, 1e-3), imports=ODE_IMPORTS)
+            Method(
+                "ODE RK45, rtol 1e-3",
+                lambda: ode_stop(scene, 1e-3),
+                imports=ODE_IMPORTS,
+                accuracy=1,
+            )
         )
         methods.append(
-            Method("ODE RK45, rtol 1e-6", lambda: ode_stop(scene, 1e-6), imports=ODE_IMPORTS)
+            Method(
+                "ODE RK45, rtol 1e-6",
+                lambda: ode_stop(scene, 1e-6),
+                imports=ODE_IMPORTS,
+                accuracy=2,
+            )
         )
         if not closed_form_exact:
             methods.append(

@@ -92,11 +92,13 @@ def solve(case: Case) -> Result:
             "ODE RK45, rtol 1e-3",
             lambda: ode_run(scene, stints, 1e-3).values(),
             imports=ODE_IMPORTS,
+            accuracy=1,
         ),
         Method(
             "ODE RK45, rtol 1e-6",
             lambda: ode_run(scene, stints, 1e-6).values(),
             imports=ODE_IMPORTS,
+            accuracy=2,
         ),
         Method(
             "ODE DOP853, rtol 1e-11",

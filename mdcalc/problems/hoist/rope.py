@@ -220,9 +220,20 @@ def rope_methods(r: RopeScene, hanging: bool) -> MethodsTable:
                 "closed form, two-mass",
                 lambda: ground_closed_form(r, False),
                 reference=not ode_reference,
+                accuracy=3 if closed_form_valid else 0,
             ),
-            Method("ODE RK45, rtol 1e-3", lambda: rope_ode(r, False, 1e-3), imports=ODE_IMPORTS),
-            Method("ODE RK45, rtol 1e-6", lambda: rope_ode(r, False, 1e-6), imports=ODE_IMPORTS),
+            Method(
+                "ODE RK45, rtol 1e-3",
+                lambda: rope_ode(r, False, 1e-3),
+                imports=ODE_IMPORTS,
+                accuracy=1,
+            ),
+            Method(
+                "ODE RK45, rtol 1e-6",
+                lambda: rope_ode(r, False, 1e-6),
+                imports=ODE_IMPORTS,
+                accuracy=2,
+            ),
             Method(
                 "ODE DOP853, rtol 1e-10",
                 lambda: rope_ode(r, False, 1e-10, None if ode_reference else MAX_ODE_PERIODS),

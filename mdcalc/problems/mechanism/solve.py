@@ -146,6 +146,7 @@ def solve(case: Case) -> Result:
             f"{'Radau' if stiff else 'DOP853'} rtol {LOOSE_RTOL:g}",
             ode_row(LOOSE_RTOL, method),
             imports=ODE_IMPORTS,
+            accuracy=2,
         ),
         Method(
             f"{method} rtol {rtol:g}",

@@ -149,11 +149,16 @@ def solve(case: Case) -> Result:
                 quantities,
                 [
                     Method("RK4, 32 steps", radii(lambda a, q: monodromy_rk4(a, q, c, 32))),
-                    Method("RK4, 256 steps", radii(lambda a, q: monodromy_rk4(a, q, c, 256))),
+                    Method(
+                        "RK4, 256 steps",
+                        radii(lambda a, q: monodromy_rk4(a, q, c, 256)),
+                        accuracy=1,
+                    ),
                     Method(
                         "DOP853 rtol 1e-7",
                         radii(lambda a, q: monodromy_ode(a, q, c, 1e-7)),
                         imports=ODE_IMPORTS,
+                        accuracy=2,
                     ),
                     Method(
                         "DOP853 rtol 1e-12",
