@@ -157,6 +157,7 @@ def oscillator_peak(
     scale = max(abs(f) for _, f in points) or 1.0
     atol = np.array([scale, scale * beta]) * rtol * 1e-3
     method = pick_solver(rtol, stiff)
+    jac = np.array([[0.0, 1.0], [-beta * beta, -2.0 * zeta * beta]]) if stiff else None
     y = np.zeros(2)
     best = (0.0, points[0][0])
     for (t0, f0), (t1, f1) in zip(points, points[1:], strict=False):
@@ -170,7 +171,15 @@ def oscillator_peak(
             return np.array([z[1], beta * beta * (load - z[0]) - 2.0 * zeta * beta * z[1]])
 
         segment = advance(
-            rhs, t0, y, t1, rtol=rtol, atol=atol, method=method, watch=[(lambda t, z: z[1], 0)]
+            rhs,
+            t0,
+            y,
+            t1,
+            rtol=rtol,
+            atol=atol,
+            method=method,
+            watch=[(lambda t, z: z[1], 0)],
+            jac=jac,
         )
         for _, t_hit, state in segment.hits:
             if abs(state[0]) > best[0]:

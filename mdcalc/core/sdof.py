@@ -141,15 +141,24 @@ class Propagator:
         delta = mu * mu - beta * beta
         root = math.sqrt(abs(delta))
         x = root * h
-        if delta > 0.0:
-            c, s = math.cosh(x), (math.sinh(x) / root if x > 1e-8 else h * (1 + x * x / 6))
-        elif delta < 0.0:
-            c, s = math.cos(x), (math.sin(x) / root if x > 1e-8 else h * (1 - x * x / 6))
+        if delta > 0.0 and x > 1e-8:
+            # Over-damped: e^{μh}·cosh and e^{μh}·sinh from the two decay rates, so
+            # that a heavily damped scene (μh and x past 700) does not overflow; the
+            # slow rate in the form free of cancellation.
+            slow, fast = -beta * beta / (zeta * beta + root), mu - root
+            e_slow, e_fast = math.exp(slow * h), math.exp(fast * h)
+            ec, es = 0.5 * (e_slow + e_fast), 0.5 * (e_slow - e_fast) / root
         else:
-            c, s = 1.0, h
-        e = math.exp(mu * h)
+            if delta > 0.0:
+                c, s = math.cosh(x), h * (1 + x * x / 6)
+            elif delta < 0.0:
+                c, s = math.cos(x), (math.sin(x) / root if x > 1e-8 else h * (1 - x * x / 6))
+            else:
+                c, s = 1.0, h
+            e = math.exp(mu * h)
+            ec, es = e * c, e * s
         a00, a01, a10, a11 = 0.0 - mu, 1.0, -beta * beta, -2.0 * zeta * beta - mu
-        phi = (e * (c + s * a00), e * s * a01, e * s * a10, e * (c + s * a11))
+        phi = (ec + es * a00, es * a01, es * a10, ec + es * a11)
         # A⁻¹ = [[-2ζβ, -1], [β², 0]]/β².
         inv = (-2.0 * zeta / beta, -1.0 / (beta * beta), 1.0, 0.0)
 

@@ -9,6 +9,7 @@ from typing import Literal
 
 from mdcalc.core import sdof
 from mdcalc.core.ode import IMPORTS as ODE_IMPORTS
+from mdcalc.core.ode import pick_solver
 from mdcalc.methods import Method, compare
 from mdcalc.problems.coupling.case import Case
 from mdcalc.problems.coupling.scene import Scene, scene_of
@@ -34,18 +35,25 @@ class Result:
 
 FACTOR = [MethodQuantity("dynamic_factor", "dynamic factor", "")]
 
-ODE_RTOLS = ((1e-3, "RK45"), (1e-6, "RK45"), (1e-10, "DOP853"))
+ODE_RTOLS = (1e-3, 1e-6, 1e-10)
+#: Above this damping ratio the decay rates differ by 4ζ² = 400 and more: the ODE
+#: rows run the implicit Radau (explicit steps would take minutes at ζ = 10⁴).
+STIFF_ZETA = 10.0
 
 
-def _ode_methods(run: Callable[[float], float]) -> list[Method]:
-    def method(rtol: float, name: str) -> Method:
+def _ode_methods(run: Callable[[float, bool], float], zeta: float) -> list[Method]:
+    stiff = zeta > STIFF_ZETA
+
+    def method(rtol: float) -> Method:
+        name = pick_solver(rtol, stiff)
         return Method(
             f"ODE {name}, rtol {rtol:.0e}".replace("e-0", "e-"),
-            lambda: {"dynamic_factor": run(rtol)},
+            lambda: {"dynamic_factor": run(rtol, stiff)},
             imports=ODE_IMPORTS,
+            note=f"stiff: ζ = {zeta:.3g}" if stiff else "",
         )
 
-    return [method(rtol, name) for rtol, name in ODE_RTOLS]
+    return [method(rtol) for rtol in ODE_RTOLS]
 
 
 def step_factor_lecture(scene: Scene) -> float:
@@ -69,7 +77,12 @@ def solve(case: Case) -> Result:
             return result
     if case.step is not None:
         zeta = scene.zeta
-        horizon = (sdof.step_peak_time(scene.beta, zeta) or 10.0 / scene.beta) * 1.5
+        peak_time = sdof.step_peak_time(scene.beta, zeta)
+        if peak_time is not None:
+            horizon = 1.5 * peak_time
+        else:  # critically or over-damped: x creeps up to 1; run until within e⁻³⁰ of it
+            slow = scene.beta / (zeta + math.sqrt(max(zeta * zeta - 1.0, 0.0)))
+            horizon = 30.0 / slow
         step = Transient("step", "step", [(0.0, 1.0)], horizon)
         result.step_methods = compare(
             "Methods: dynamic factor of a suddenly applied torque",
@@ -86,7 +99,7 @@ def solve(case: Case) -> Result:
                     lambda: {"dynamic_factor": sdof.step_peak(zeta)},
                     reference=True,
                 ),
-                *_ode_methods(lambda rtol: ode_peak(scene, step, rtol)),
+                *_ode_methods(lambda rtol, stiff: ode_peak(scene, step, rtol, stiff), zeta),
             ],
         )
     if case.harmonic is not None and scene.p > 0.0:
@@ -137,7 +150,9 @@ def _transient_methods(scene: Scene, transient: Transient) -> list[Method]:
             reference=True,
         )
     )
-    return methods + _ode_methods(lambda rtol: ode_peak(scene, transient, rtol))
+    return methods + _ode_methods(
+        lambda rtol, stiff: ode_peak(scene, transient, rtol, stiff), scene.zeta
+    )
 
 
 def _grid_peak(gamma: float) -> float:

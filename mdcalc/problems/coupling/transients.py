@@ -94,9 +94,9 @@ def duhamel_peak(scene: Scene, transient: Transient) -> tuple[float, float]:
     return response.peak, response.peak_time
 
 
-def ode_peak(scene: Scene, transient: Transient, rtol: float) -> float:
+def ode_peak(scene: Scene, transient: Transient, rtol: float, stiff: bool = False) -> float:
     from mdcalc.core.ode import oscillator_peak
 
     scale = transient.peak_torque
     knots = [(t, m / scale) for t, m in transient.knots]
-    return oscillator_peak(scene.beta, scene.zeta, knots, transient.horizon, rtol)[0]
+    return oscillator_peak(scene.beta, scene.zeta, knots, transient.horizon, rtol, stiff)[0]
