@@ -1,7 +1,7 @@
 """Thin command-line layer: one command per registered problem, plus check and new.
 
 Exit codes: 0 computed, 1 ``check`` mismatch, 2 bad input, 3 valid input without an
-answer, 70 a bug (one line; the traceback only with ``--debug``). Messages go to
+answer, 70 a bug (one line; the traceback only with ``--debug``), 130 Ctrl-C. Messages go to
 stderr as ``file:line: error: path: message``; results to stdout. JSON is written
 with plain ``print``: a rich Console wraps long lines when piped and breaks it.
 """
@@ -18,7 +18,15 @@ from typing import Annotated, Any
 import typer
 
 from mdcalc import __version__
-from mdcalc.errors import EXIT_BUG, EXIT_INPUT, EXIT_MISMATCH, EXIT_NO_ANSWER, InputError, Problem
+from mdcalc.errors import (
+    EXIT_BUG,
+    EXIT_INPUT,
+    EXIT_INTERRUPTED,
+    EXIT_MISMATCH,
+    EXIT_NO_ANSWER,
+    InputError,
+    Problem,
+)
 from mdcalc.problems import PROBLEMS, ProblemSpec
 
 app = typer.Typer(
@@ -101,8 +109,11 @@ def _guard(body: Callable[[], int], debug: bool) -> int:
         _stderr(str(exc))
         return EXIT_INPUT
     except KeyboardInterrupt:
+        import signal
+
+        signal.signal(signal.SIGINT, signal.SIG_DFL)  # a second Ctrl-C ends at once
         _stderr("mdcalc: interrupted")
-        return 130
+        return EXIT_INTERRUPTED
     except BrokenPipeError:
         # The reader went away (`mdcalc ... | head`): not a bug. Point stdout at
         # devnull so the interpreter's final flush does not complain again.
@@ -371,6 +382,8 @@ def run_command(
         counts: Counter[str] = Counter()
         failed: list[tuple[str, str]] = []
         start = time.perf_counter()
+        flushed = start
+        # Streamed: each result is written as soon as it and the ones before it are done.
         outcomes = pool_map(FileRunner(options), [str(f.path) for f in files], workers)
         for case, outcome in zip(files, outcomes, strict=True):
             if out is not None:
@@ -380,6 +393,9 @@ def run_command(
             elif text:
                 sys.stdout.write(outcome.text)
                 print()
+            if (now := time.perf_counter()) - flushed > 0.2:
+                sys.stdout.flush()
+                flushed = now
             for message in outcome.messages:
                 _stderr(message)
             counts[outcome.status] += 1

@@ -16,6 +16,7 @@ EXIT_MISMATCH = 1
 EXIT_INPUT = 2
 EXIT_NO_ANSWER = 3
 EXIT_BUG = 70
+EXIT_INTERRUPTED = 130  # Ctrl-C (128 + SIGINT), as a shell reports it
 
 
 class MdcalcError(Exception):

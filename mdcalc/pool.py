@@ -12,8 +12,12 @@ from __future__ import annotations
 
 import multiprocessing
 import os
+import signal
+import time
+from collections import deque
 from collections.abc import Callable, Iterable, Iterator, Sequence
-from concurrent.futures import ProcessPoolExecutor
+from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
+from contextlib import suppress
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TypeVar
@@ -74,10 +78,23 @@ def warm() -> None:
     import mdcalc.runner  # noqa: F401
 
 
+#: A chunk of items sent to a worker aims at this much work [s]: long enough that a
+#: round trip costs little, short enough that results stream and Ctrl-C is quick.
+CHUNK_SECONDS = 0.1
+MAX_CHUNK = 64
+#: Finished results held while an earlier, slower item is still running.
+MAX_HELD = 10_000
+
+
 def pool_map(
     func: Callable[[T], R], items: Sequence[T], jobs: int, on_done: Callable[[], None] | None = None
 ) -> Iterator[R]:
-    """``map(func, items)`` in input order, over ``jobs`` processes (in-process for 1)."""
+    """``map(func, items)`` over ``jobs`` processes (in-process for 1), streamed: each
+    result is yielded as soon as it and every earlier one are done, in input order.
+
+    Chunks start at one item and grow to about CHUNK_SECONDS of work each. Workers
+    ignore SIGINT (a terminal sends Ctrl-C to the whole process group); the parent's
+    KeyboardInterrupt kills them at once and goes up to the caller."""
     if jobs <= 1 or len(items) <= 1:
         for item in items:
             yield func(item)
@@ -87,15 +104,67 @@ def pool_map(
     warm()
     methods = multiprocessing.get_all_start_methods()
     context = multiprocessing.get_context("fork" if "fork" in methods else None)
-    # Chunks amortise the round trips of small, fast cases; four per worker keep the
-    # load balanced when a few cases are slow.
-    chunksize = max(1, min(64, len(items) // (jobs * 4)))
-    with ProcessPoolExecutor(max_workers=jobs, mp_context=context) as pool:
-        try:
-            for result in pool.map(func, items, chunksize=chunksize):
+    pool = ProcessPoolExecutor(max_workers=jobs, mp_context=context, initializer=_ignore_sigint)
+    try:
+        yield from _stream(pool, func, items, jobs, on_done)
+    except BaseException:
+        _kill(pool)
+        raise
+    pool.shutdown(wait=True)
+
+
+def _stream(
+    pool: ProcessPoolExecutor,
+    func: Callable[[T], R],
+    items: Sequence[T],
+    jobs: int,
+    on_done: Callable[[], None] | None,
+) -> Iterator[R]:
+    order: deque[Future[tuple[list[R], float]]] = deque()  # chunks in input order
+    running: set[Future[tuple[list[R], float]]] = set()
+    sent = held = 0
+    per_item: float | None = None  # seconds of work per item, from finished chunks
+    while sent < len(items) or order:
+        while sent < len(items) and len(running) < 2 * jobs and held < MAX_HELD:
+            size = 1 if per_item is None else int(CHUNK_SECONDS / max(per_item, 1e-6))
+            chunk = items[sent : sent + max(1, min(MAX_CHUNK, size))]
+            future = pool.submit(_run_chunk, func, chunk)
+            order.append(future)
+            running.add(future)
+            sent += len(chunk)
+        while order and order[0] not in running:  # finished and counted
+            results, _ = order.popleft().result()
+            held -= len(results)
+            for result in results:
                 yield result
                 if on_done is not None:
                     on_done()
-        except BaseException:
-            pool.shutdown(wait=False, cancel_futures=True)
-            raise
+        if not order:
+            continue
+        done, _ = wait(running, return_when=FIRST_COMPLETED)
+        running -= done
+        for future in done:
+            if future.exception() is None:
+                results, seconds = future.result()
+                held += len(results)
+                measured = seconds / max(len(results), 1)
+                per_item = measured if per_item is None else 0.5 * (per_item + measured)
+
+
+def _run_chunk(func: Callable[[T], R], chunk: Sequence[T]) -> tuple[list[R], float]:
+    start = time.perf_counter()
+    results = [func(item) for item in chunk]
+    return results, time.perf_counter() - start
+
+
+def _ignore_sigint() -> None:
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
+def _kill(pool: ProcessPoolExecutor) -> None:
+    """Stop the workers now: a case may have a minute of budget left."""
+    processes = getattr(pool, "_processes", None) or {}
+    for process in list(processes.values()):
+        with suppress(Exception):
+            process.kill()
+    pool.shutdown(wait=False, cancel_futures=True)

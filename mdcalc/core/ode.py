@@ -74,13 +74,15 @@ def advance(
     ``jac`` is a constant Jacobian for the implicit solvers of linear systems.
     """
     import numpy as np
-    from scipy.integrate import solve_ivp
+    from scipy.integrate import solve_ivp as _solve_ivp
 
     from mdcalc.core import budget
 
     y0 = np.asarray(y0, dtype=float)
     if not (np.all(np.isfinite(y0)) and math.isfinite(t0)):
         raise ArithmeticError(f"the state at t = {t0:.6g} s is not a finite number")
+    if jac is not None and not np.all(np.isfinite(jac)):
+        raise ArithmeticError("the Jacobian is not a finite number")
 
     def checked(t: float, y: np.ndarray) -> Any:  # the budget, at every evaluation
         budget.check()
@@ -93,17 +95,20 @@ def advance(
         events.append(_event(function, direction, False))
     if t1 <= t0:
         return Segment(t0, np.array(y0, dtype=float), None, 0, [])
-    solution = solve_ivp(
-        checked,
-        (t0, t1),
-        y0,
-        method=method,
-        rtol=rtol,
-        atol=atol,
-        events=events or None,
-        dense_output=dense,
-        **({"jac": jac} if jac is not None else {}),
-    )
+    try:
+        solution = _solve_ivp(
+            checked,
+            (t0, t1),
+            y0,
+            method=method,
+            rtol=rtol,
+            atol=atol,
+            events=events or None,
+            dense_output=dense,
+            **({"jac": jac} if jac is not None else {}),
+        )
+    except ValueError as exc:  # scipy giving up on a valid problem (an event's root)
+        raise ArithmeticError(f"{method} failed: {exc}") from None
     if solution.status < 0:
         raise ArithmeticError(f"{method} failed at t = {solution.t[-1]:.6g} s: {solution.message}")
     hits: list[tuple[int, float, np.ndarray]] = []
