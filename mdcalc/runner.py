@@ -94,7 +94,18 @@ def solve_text(
             ],
         )
     module = spec.load()
-    model = validate(module.Case, case)
+    try:
+        model = validate(module.Case, case)
+    except ArithmeticError as exc:  # a cross-field rule computing with 5e-324, say
+        title = case.data.get("title")
+        report = Report(
+            spec.name,
+            title if isinstance(title, str) else spec.name,
+            status="no-answer",
+            message=_out_of_range(f"{type(exc).__name__}: {exc}"),
+        )
+        report.case = str(path)
+        return Run(report, None, module, case)
     result, report = solve_model(spec.name, module, model, time_limit)
     report.case = str(path)
     if case.conversions:
@@ -146,7 +157,8 @@ def out_of_float_range(exc: BaseException) -> bool:
         return True
     text = str(exc)
     return isinstance(exc, ValueError) and (
-        text == "math domain error" or text.endswith(" in fsum")
+        text in ("math domain error", "cannot convert float NaN to integer")
+        or text.endswith(" in fsum")
     )
 
 

@@ -248,6 +248,8 @@ def point_results(
         _, report = solve_model(problem, module, model, time_limit)
     except InputError as exc:
         return EXIT_INPUT, {}, "; ".join(p.format(path) for p in exc.problems)
+    except ArithmeticError as exc:  # validation computing with a value like 5e-324
+        return EXIT_NO_ANSWER, {}, f"no answer: {type(exc).__name__}: {exc}"
     except Exception as exc:
         return EXIT_BUG, {}, f"internal error: {type(exc).__name__}: {exc}"
     values = {key: value for key, (value, _) in _numeric(report).items()}

@@ -63,6 +63,13 @@ def solve(case: Case) -> Result:
     top = plan(scene, math.inf)
     the_plan = plan(scene, scene.target)
     result = Result(case, scene, the_plan, top)
+    if not scene.target > 0.0:  # a positive km/h that underflows to 0 m/s
+        result.status = "no-answer"
+        result.message = (
+            f"the target speed ({case.target.value:.3g} m/s) is zero in double precision; "
+            "there is nothing to accelerate to"
+        )
+        return result
     if not the_plan.reached:
         result.status = "no-answer"
         result.message = _no_answer(scene, the_plan)
