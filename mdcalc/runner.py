@@ -6,6 +6,7 @@ Shared by the problem commands and ``mdcalc check``; raises
 
 from __future__ import annotations
 
+import math
 import warnings
 from dataclasses import dataclass
 from pathlib import Path
@@ -121,25 +122,31 @@ def solve_model(
     runs over the budget or ends in a non-finite number gives (None, a no-answer report
     saying why): exit 3, never an internal error."""
     result: Any = None
+    report: Report | None = None
     why: str | None = None
-    with budget.limit(time_limit) as limit, warnings.catch_warnings():
-        warnings.simplefilter("ignore", RuntimeWarning)  # overflow in scipy's steps...
-        try:
-            result = module.solve(model)
-            report = module.report(result)
-            if (place := first_non_finite(report)) is not None:
-                why = _out_of_range(f"a result is not a finite number: {place}")
-        except budget.OverBudget as exc:
+    limit = budget.Budget(math.inf if time_limit is None else time_limit)
+    try:
+        with budget.limit(time_limit) as limit, warnings.catch_warnings():
+            warnings.simplefilter("ignore", RuntimeWarning)  # overflow in scipy's steps...
+            try:
+                result = module.solve(model)
+                report = module.report(result)
+                if (place := first_non_finite(report)) is not None:
+                    why = _out_of_range(f"a result is not a finite number: {place}")
+            except (ArithmeticError, ValueError) as exc:
+                if not out_of_float_range(exc):
+                    raise
+                why = _out_of_range(f"{type(exc).__name__}: {exc}")
+    except budget.OverBudget as exc:
+        # Also an alarm that fell due as the limit was being lifted: the report, if
+        # it was finished, stands.
+        if report is None and why is None:
             where = f" ({exc})" if str(exc) else ""
             why = (
                 f"the scene did not finish within the time budget of {limit.seconds:g} s"
                 f"{where}; raise it with --time-limit"
             )
-        except (ArithmeticError, ValueError) as exc:
-            if not out_of_float_range(exc):
-                raise
-            why = _out_of_range(f"{type(exc).__name__}: {exc}")
-    if why is not None:
+    if why is not None or report is None:
         result = None
         title = getattr(model, "title", None) or problem
         report = Report(problem, title, status="no-answer", message=why)

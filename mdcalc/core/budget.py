@@ -125,8 +125,9 @@ def _deadline(budget: Budget, deadline: float) -> Iterator[None]:
 
 def _alarm(signum: int, frame: Any) -> None:
     budget = current()
-    # A stale alarm (its deadline popped already) re-arms for the one in force.
-    if budget is not None and budget.deadlines and budget.remaining() > 0:
+    if budget is None or not budget.deadlines:
+        return  # stale: the limit it was set for has ended
+    if budget.remaining() > 0:  # stale: its share has ended; re-arm for the one in force
         _arm(budget.deadline)
         return
     raise OverBudget
