@@ -294,3 +294,33 @@ def test_a_heavily_over_damped_pulse_answers_as_a_first_order_lag(cli, write_cas
     document = json.loads(result.stdout)
     assert document["results"]["pulse_dynamic_factor"]["value"] == pytest.approx(expected, rel=1e-6)
     assert document["budget"]["cut"] == []
+
+
+def _pulse_case(key: str, value: float) -> str:
+    text = (CASES / "extreme/coupling_heavily_damped_pulse.toml").read_text(encoding="utf-8")
+    edited = re.sub(rf"(?m)^{key} = .*$", f"{key} = {value!r}", text, count=1)
+    assert edited != text
+    return edited[: edited.index("[expect]")]
+
+
+def test_extreme_couplings_answer_the_physics_in_seconds(cli, write_case):
+    # J1 = 2, J2 = 2, c = 900, α = 3000, a 0.3 s pulse (the shipped extreme case).
+    import math
+    import time
+
+    # J2 = 1e-300: β and ζ near 1e151, yet the slow rate β/(ζ + √(ζ² - 1)) → c/α =
+    # 0.3 1/s: a first-order lag, 1 - exp(-0.09). (ζβ squared overflowed: a silent 1.)
+    # c = 1e12: β = 1e6 rad/s, ζ = 3000/(2·1e6); the rise's overshoot has died long
+    # before the pulse ends: the step peak 1 + exp(-πζ/√(1 - ζ²)).
+    zeta = 3000.0 / 2e6
+    expected = {
+        ("driven_inertia", 1e-300): -math.expm1(-0.3 * 900.0 / 3000.0),
+        ("stiffness", 1e12): 1.0 + math.exp(-math.pi * zeta / math.sqrt(1.0 - zeta * zeta)),
+    }
+    for (key, value), factor in expected.items():
+        start = time.perf_counter()
+        result = cli("coupling", write_case(_pulse_case(key, value)), "--json")
+        assert time.perf_counter() - start < 10.0
+        assert result.exit_code == 0, result.stderr
+        got = json.loads(result.stdout)["results"]["pulse_dynamic_factor"]["value"]
+        assert got == pytest.approx(factor, rel=1e-6), key
