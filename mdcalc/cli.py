@@ -597,6 +597,12 @@ def _main(
 
 def main() -> None:
     import os
+    import warnings
+
+    # numpy's and scipy's RuntimeWarnings (an overflow in a step that is then
+    # rejected) are noise to a user; what they mean is reported as a result, a
+    # failed row or no answer (solve_model silences them too, for in-process use).
+    warnings.filterwarnings("ignore", category=RuntimeWarning)
 
     # pydantic looks for plugins through importlib.metadata when it builds the first
     # model (~25 ms of a 0.3 s run); mdcalc's models use none.
