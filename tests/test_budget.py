@@ -232,30 +232,16 @@ def test_run_and_check_take_the_limit(cli, command, monkeypatch):
 def test_sweep_points_take_the_limit(cli, monkeypatch):
     from mdcalc.problems import mechanism
 
-    case = CASES / "mechanism/crank_press.toml"
-    result = cli(
-        "sweep",
-        case,
-        "--vary",
-        "motion.steps_per_revolution=16:32:2",
-        "--jobs",
-        "1",
-        "--time-limit",
-        "0",
-    )
+    def sweep(limit: str):
+        case = CASES / "mechanism/crank_press.toml"
+        vary = ("--vary", "motion.steps_per_revolution=16:32:2")
+        return cli("sweep", case, *vary, "--jobs", "1", "--time-limit", limit)
+
+    result = sweep("0")
     assert result.exit_code == 0, result.stderr
     monkeypatch.setattr(mechanism, "solve", never_ends)
     start = time.perf_counter()
-    result = cli(
-        "sweep",
-        case,
-        "--vary",
-        "motion.steps_per_revolution=16:32:2",
-        "--jobs",
-        "1",
-        "--time-limit",
-        "0.2",
-    )
+    result = sweep("0.2")
     assert time.perf_counter() - start < 2.0
     assert result.exit_code == 3
     assert "time budget of 0.2 s" in result.stderr
