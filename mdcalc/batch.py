@@ -11,9 +11,10 @@ from __future__ import annotations
 import json
 import time
 import traceback
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 from mdcalc import __version__
 from mdcalc.errors import EXIT_BUG, EXIT_INPUT, EXIT_NO_ANSWER, EXIT_OK, InputError
@@ -82,13 +83,19 @@ def _error_json(path: str, status: str, problems: list[dict[str, object]]) -> st
 def run_file(path: str, options: RunOptions) -> Outcome:
     """Run one case file; never raises (a bug becomes an outcome with exit 70)."""
     from mdcalc import methods
+    from mdcalc.casefile import read_case
     from mdcalc.report import render_rich, to_json
-    from mdcalc.runner import run_case
+    from mdcalc.runner import run_text
 
     methods.MIN_TIMING_SECONDS = options.timing_budget
     start = time.perf_counter()
     try:
-        report = run_case(Path(path), time_limit=options.time_limit)
+        case = read_case(Path(path))
+        if "study" in case.data:
+            outcome = run_study_file(case, options)
+            outcome.seconds = time.perf_counter() - start
+            return outcome
+        report = run_text(case, time_limit=options.time_limit)
         outcome = Outcome(
             path,
             EXIT_OK if report.status == "ok" else EXIT_NO_ANSWER,
@@ -100,20 +107,7 @@ def run_file(path: str, options: RunOptions) -> Outcome:
         if options.json:
             outcome.json = to_json(report, indent=None)
         if options.text:
-            from io import StringIO
-
-            from rich.console import Console
-
-            buffer = StringIO()
-            console = Console(
-                file=buffer,
-                width=options.width,
-                force_terminal=options.color,
-                no_color=not options.color,
-                highlight=False,
-            )
-            render_rich(report, console)
-            outcome.text = buffer.getvalue()
+            outcome.text = _rendered(lambda console: render_rich(report, console), options)
     except InputError as exc:
         outcome = Outcome(path, EXIT_INPUT, messages=[str(exc)])
         outcome.json = _error_json(
@@ -133,6 +127,44 @@ def run_file(path: str, options: RunOptions) -> Outcome:
             [{"message": f"{type(exc).__name__}: {exc}", "traceback": traceback.format_exc()}],
         )
     outcome.seconds = time.perf_counter() - start
+    return outcome
+
+
+def _rendered(render: Callable[[Any], None], options: RunOptions) -> str:
+    from io import StringIO
+
+    from rich.console import Console
+
+    buffer = StringIO()
+    console = Console(
+        file=buffer,
+        width=options.width,
+        force_terminal=options.color,
+        no_color=not options.color,
+        highlight=False,
+    )
+    render(console)
+    return buffer.getvalue()
+
+
+def run_study_file(case: Any, options: RunOptions) -> Outcome:
+    """A study file in a batch: the study runs in this worker, its samples one after
+    another (or by the kernel); its outcome is the study's JSON or report."""
+    from mdcalc.cluster import PoolMapper
+    from mdcalc.study import run
+    from mdcalc.study.output import render_rich, to_json
+
+    path = str(case.path)
+    result = run(case, PoolMapper(1), options.time_limit)
+    answered = any(s is not None for s in result.stats.values())
+    outcome = Outcome(path, EXIT_OK if answered else EXIT_NO_ANSWER, result.plan.problem)
+    outcome.title = case.data.get("title") if isinstance(case.data.get("title"), str) else None
+    if not answered:
+        outcome.messages.append(f"{path}: error: no answer: no sample gave a value")
+    if options.json:
+        outcome.json = to_json(result, indent=None)
+    if options.text:
+        outcome.text = _rendered(lambda console: render_rich(result, console), options)
     return outcome
 
 

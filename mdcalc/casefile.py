@@ -256,6 +256,12 @@ def _inner_model(annotation: Any) -> Any:
     return None
 
 
+def field_info(model: type[BaseModel], loc: tuple[str | int, ...]) -> Any:
+    """The pydantic FieldInfo of the key at ``loc`` (its bounds, its description);
+    None for a key the model does not have."""
+    return _walk(model, loc)[1]
+
+
 def unit_of(model: type[BaseModel], loc: tuple[str | int, ...]) -> str:
     """The unit of the field at ``loc`` (from its description), "" if it has none."""
     return _unit(_walk(model, loc)[1])

@@ -10,13 +10,13 @@ from dataclasses import dataclass, field
 from functools import partial
 from pathlib import Path
 
-from mdcalc.casefile import read_case
+from mdcalc.casefile import CaseText, read_case
 from mdcalc.core.budget import DEFAULT_SECONDS
 from mdcalc.errors import InputError
 from mdcalc.model import CaseBase, Expectation
 from mdcalc.pool import collect as collect_cases
 from mdcalc.pool import pool_map
-from mdcalc.report import Value, format_value
+from mdcalc.report import Quantity, Value, format_value
 from mdcalc.runner import run_text
 
 
@@ -84,8 +84,11 @@ def check_file(
         if "expect" not in case.data:
             outcome.files_skipped += 1
             return
-        report = run_text(case, time_limit=time_limit)
-        # run_text validated the whole file, so the [expect] table is valid here.
+        if "study" in case.data:
+            results = study_values(case, time_limit)
+        else:
+            results = run_text(case, time_limit=time_limit).results()
+        # The run validated the whole file, so the [expect] table is valid here.
         expectations = CaseBase.model_validate({"expect": case.data["expect"]}).expect or {}
     except InputError as exc:
         outcome.input_errors.append(str(exc))
@@ -94,7 +97,6 @@ def check_file(
         outcome.internal_errors.append(f"{path}: internal error: {type(exc).__name__}: {exc}")
         return
     outcome.files_checked += 1
-    results = report.results()
     for key, expectation in expectations.items():
         quantity = results.get(key)
         got = quantity.value if quantity is not None else None
@@ -109,6 +111,16 @@ def check_file(
                 source=expectation.source,
             )
         )
+
+
+def study_values(case: CaseText, time_limit: float | None) -> dict[str, Quantity]:
+    """A study file's summary numbers by their flat keys (``stopping_distance.p95``),
+    the study run in this process (a check runs its files in the pool)."""
+    from mdcalc.cluster import PoolMapper
+    from mdcalc.study import run
+
+    values = run(case, PoolMapper(1), time_limit).values()
+    return {key: Quantity(key, key, value) for key, value in values.items()}
 
 
 def check_one(path: Path, time_limit: float | None = DEFAULT_SECONDS) -> CheckOutcome:

@@ -57,6 +57,17 @@ TimeLimitOption = Annotated[
 ]
 
 
+SchedulerOption = Annotated[
+    str | None,
+    typer.Option(
+        "--scheduler",
+        metavar="ADDRESS",
+        help="Run on a dask.distributed cluster: tcp://HOST:PORT, or local:N for N worker "
+        "processes here (needs mdcalc[dask]). Default: $MDCALC_SCHEDULER, else the process pool.",
+    ),
+]
+
+
 def _limit(seconds: float) -> float | None:
     return seconds if seconds > 0 else None
 
@@ -349,9 +360,10 @@ def run_command(
         bool, typer.Option("--json", help="Write each result as one JSON line on stdout.")
     ] = False,
     time_limit: TimeLimitOption = DEFAULT_TIME_LIMIT,
+    scheduler: SchedulerOption = None,
     debug: DebugOption = False,
 ) -> None:
-    """Run many case files in a process pool; a summary at the end.
+    """Run many case files in a process pool (or on a dask cluster); a summary at the end.
 
     Exit 0 when every file computed; otherwise the worst file's code: 70 a bug,
     2 bad input, 3 no answer.
@@ -363,8 +375,8 @@ def run_command(
         from collections import Counter
 
         from mdcalc.batch import STATUS_OF_EXIT, FileRunner, RunOptions, worst_exit
-        from mdcalc.casefile import write_text_atomic
-        from mdcalc.pool import collect, default_jobs, pool_map
+        from mdcalc.cluster import executor, scheduler_of
+        from mdcalc.pool import collect, default_jobs
 
         files = collect(paths, outputs=out is not None)
         if not files:
@@ -381,35 +393,49 @@ def run_command(
         )
         counts: Counter[str] = Counter()
         failed: list[tuple[str, str]] = []
-        start = time.perf_counter()
-        flushed = start
-        # Streamed: each result is written as soon as it and the ones before it are done.
-        outcomes = pool_map(FileRunner(options), [str(f.path) for f in files], workers)
-        for case, outcome in zip(files, outcomes, strict=True):
-            if out is not None:
-                write_text_atomic(out / case.out_name, outcome.json + "\n")
-            if as_json:
-                print(outcome.json, flush=False)
-            elif text:
-                sys.stdout.write(outcome.text)
-                print()
-            if (now := time.perf_counter()) - flushed > 0.2:
-                sys.stdout.flush()
-                flushed = now
-            for message in outcome.messages:
-                _stderr(message)
-            counts[outcome.status] += 1
-            if outcome.exit_code != 0:
-                failed.append((outcome.path, outcome.status))
+        with executor(scheduler_of(scheduler), workers) as mapper:
+            start = time.perf_counter()
+            flushed = start
+            # Streamed: each result is written as soon as it and the ones before it are done.
+            outcomes = mapper(FileRunner(options), [str(f.path) for f in files])
+            for case, outcome in zip(files, outcomes, strict=True):
+                flushed = _write_outcome(case, outcome, out, as_json, text, flushed)
+                counts[outcome.status] += 1
+                if outcome.exit_code != 0:
+                    failed.append((outcome.path, outcome.status))
         seconds = time.perf_counter() - start
-        _print_run_summary(counts, failed, len(files), seconds, workers, stderr=as_json)
+        how = mapper.description
+        _print_run_summary(counts, failed, len(files), seconds, how, stderr=as_json)
         return worst_exit(code for code, status in STATUS_OF_EXIT.items() if counts[status])
 
     raise typer.Exit(_guard(body, debug))
 
 
+def _write_outcome(
+    case: Any, outcome: Any, out: Path | None, as_json: bool, text: bool, flushed: float
+) -> float:
+    """Write one file's outcome where it goes; flush stdout every 0.2 s (streaming)."""
+    import time
+
+    from mdcalc.casefile import write_text_atomic
+
+    if out is not None:
+        write_text_atomic(out / case.out_name, outcome.json + "\n")
+    if as_json:
+        print(outcome.json, flush=False)
+    elif text:
+        sys.stdout.write(outcome.text)
+        print()
+    if (now := time.perf_counter()) - flushed > 0.2:
+        sys.stdout.flush()
+        flushed = now
+    for message in outcome.messages:
+        _stderr(message)
+    return flushed
+
+
 def _print_run_summary(
-    counts: Any, failed: list[tuple[str, str]], files: int, seconds: float, jobs: int, stderr: bool
+    counts: Any, failed: list[tuple[str, str]], files: int, seconds: float, how: str, stderr: bool
 ) -> None:
     from rich.table import Table
 
@@ -423,7 +449,7 @@ def _print_run_summary(
     console = _console(stderr=stderr)
     console.print(
         f"mdcalc run: {files} case files in {seconds:.3g} s "
-        f"({files / max(seconds, 1e-9):.4g} files/s, {jobs} job{'s' if jobs > 1 else ''})",
+        f"({files / max(seconds, 1e-9):.4g} files/s, {how})",
         highlight=False,
     )
     console.print(table)
@@ -452,9 +478,11 @@ def sweep_command(
     ] = None,
     jobs: JobsOption = 0,
     time_limit: TimeLimitOption = DEFAULT_TIME_LIMIT,
+    scheduler: SchedulerOption = None,
     debug: DebugOption = False,
 ) -> None:
-    """Run one case over a grid of values: vectorized for closed forms, else in a pool.
+    """Run one case over a grid of values: vectorized for closed forms, else in a pool
+    (or on a dask cluster).
 
     Without --out: the table (up to 200 points) or the range of each result.
     """
@@ -465,11 +493,15 @@ def sweep_command(
 
         if out is not None and out.suffix.lower() not in (".csv", ".json"):
             raise InputError(out, [Problem("--out takes a .csv or a .json file")])
+        from mdcalc.cluster import executor, scheduler_of
+
         sweep = plan(case, [parse_vary(v) for v in vary])
-        with _progress(sweep.points) as advance:
-            table = evaluate(
-                sweep, result or [], jobs or default_jobs(sweep.points), advance, _limit(time_limit)
-            )
+        workers = jobs or default_jobs(sweep.points)
+        with (
+            executor(scheduler_of(scheduler), workers) as mapper,
+            _progress(sweep.points) as advance,
+        ):
+            table = evaluate(sweep, result or [], workers, advance, _limit(time_limit), mapper)
         for message in table.messages[:20]:
             _stderr(message)
         if len(table.messages) > 20:
@@ -488,29 +520,171 @@ def sweep_command(
     raise typer.Exit(_guard(body, debug))
 
 
-class _Progress:
-    """A rich progress bar on stderr, only when stderr is a terminal."""
+@app.command("study")
+def study_command(
+    case: Annotated[
+        Path,
+        typer.Argument(
+            help="Study file: a case file with a [study] table.",
+            show_default=False,
+            metavar="STUDY.toml",
+            autocompletion=complete_case,
+        ),
+    ],
+    as_json: JsonOption = False,
+    plot: PlotOption = None,
+    out: Annotated[
+        Path | None,
+        typer.Option(
+            "--out",
+            metavar="FILE",
+            help="Keep every sample's inputs and results: FILE.csv, or FILE.parquet "
+            "(needs pyarrow).",
+        ),
+    ] = None,
+    force: ForceOption = False,
+    jobs: JobsOption = 0,
+    time_limit: Annotated[
+        float,
+        typer.Option(
+            "--time-limit",
+            min=0.0,
+            metavar="SECONDS",
+            help="Stop a sample after this long (it counts as over the time budget). 0: no limit.",
+        ),
+    ] = DEFAULT_TIME_LIMIT,
+    scheduler: SchedulerOption = None,
+    debug: DebugOption = False,
+) -> None:
+    """Run a scene over the scatter of its inputs: statistics of each result, the
+    probability of exceeding each limit, Sobol indices; on this machine or a dask cluster.
 
-    def __init__(self, total: int) -> None:
+    Exit 0 when the study ran (failed samples are counted in it), 2 bad input, 3 when
+    no sample answered.
+    """
+
+    def body() -> int:
+        from mdcalc.casefile import read_case
+        from mdcalc.cluster import executor, scheduler_of
+        from mdcalc.pool import default_jobs
+        from mdcalc.study import run as run_study
+        from mdcalc.study.output import charts, render_rich, to_json
+
+        _check_study_outputs(case, plot, out, force)
+        study_case = read_case(case)
+        if "study" not in study_case.data:
+            raise InputError(
+                case,
+                [
+                    Problem(
+                        "no [study] table: this is a case file (run: mdcalc "
+                        f"{study_case.data.get('problem', 'PROBLEM')} {case})"
+                    )
+                ],
+            )
+        with executor(scheduler_of(scheduler), jobs or default_jobs(1 << 30)) as mapper:
+            with _progress(None) as advance:
+                result = run_study(
+                    study_case,
+                    mapper,
+                    _limit(time_limit),
+                    advance,
+                    getattr(advance, "total", None),
+                )
+        if as_json:
+            print(to_json(result))
+        else:
+            render_rich(result, _console())
+        if out is not None:
+            from mdcalc.files import write_atomic
+
+            if out.suffix.lower() == ".csv":
+                from mdcalc.study.output import to_csv
+
+                write_atomic(out, to_csv(result), replace=force, option="--out: ")
+            else:
+                from mdcalc.study.output import write_parquet
+
+                write_atomic(
+                    out, lambda tmp: write_parquet(result, tmp), replace=force, option="--out: "
+                )
+            _stderr(f"wrote {out}: {len(result.samples):,} samples")
+        if plot is not None:
+            from mdcalc.plot import render
+
+            render(
+                charts(result),
+                plot,
+                title=f"Study: {study_case.data.get('title') or result.plan.problem}",
+                replace=force,
+            )
+            _stderr(f"wrote {plot}")
+        if all(s is None for s in result.stats.values()):
+            _stderr(f"{case}: error: no answer: no sample gave a value")
+            return EXIT_NO_ANSWER
+        return 0
+
+    raise typer.Exit(_guard(body, debug))
+
+
+def _check_study_outputs(case: Path, plot: Path | None, out: Path | None, force: bool) -> None:
+    """Refuse --plot and --out paths before anything is computed."""
+    _check_outputs(case, plot, None, force)
+    if out is None:
+        return
+    problem = None
+    if out.suffix.lower() not in (".csv", ".parquet"):
+        problem = "--out: use a file ending .csv or .parquet"
+    elif out.suffix.lower() == ".parquet":
+        import importlib.util
+
+        if importlib.util.find_spec("pyarrow") is None:
+            problem = (
+                "--out: .parquet needs pyarrow, which is not installed "
+                "(pip install pyarrow); use .csv"
+            )
+    if problem is None and out.is_dir():
+        problem = "--out: is a folder; give a file name"
+    elif problem is None and out.exists() and not force:
+        problem = "--out: the file exists; use --force to overwrite it"
+    elif problem is None and out.resolve() == case.resolve():
+        problem = "--out: would overwrite the study file itself"
+    if problem is not None:
+        raise InputError(out, [Problem(problem)])
+
+
+class _Progress:
+    """A rich progress bar on stderr, only when stderr is a terminal. ``total`` None:
+    told later, by the ``total`` attribute of what ``with`` gives."""
+
+    def __init__(self, total: int | None) -> None:
         self.total = total
         self.bar: Any = None
 
-    def __enter__(self) -> Callable[[int], None] | None:
-        if not sys.stderr.isatty() or self.total < 2:
+    def __enter__(self) -> Any:
+        if not sys.stderr.isatty() or (self.total is not None and self.total < 2):
             return None
         from rich.progress import Progress
 
         self.bar = Progress(console=_console(stderr=True), transient=True)
         self.bar.start()
-        task = self.bar.add_task("sweep", total=self.total)
-        return lambda n: self.bar.advance(task, n)
+        task = self.bar.add_task("running", total=self.total)
+
+        class Advance:
+            def __call__(_, n: int) -> None:
+                self.bar.advance(task, n)
+
+            def total(_, n: int) -> None:
+                self.bar.update(task, total=n)
+
+        return Advance()
 
     def __exit__(self, *exc: object) -> None:
         if self.bar is not None:
             self.bar.stop()
 
 
-def _progress(total: int) -> _Progress:
+def _progress(total: int | None) -> _Progress:
     return _Progress(total)
 
 

@@ -18,7 +18,7 @@ from mdcalc.files import write_atomic
 
 FORMATS = (".png", ".svg", ".pdf")
 
-Style = Literal["line", "dashed", "dotted", "points", "step"]
+Style = Literal["line", "dashed", "dotted", "points", "step", "bars"]
 
 
 @dataclass(frozen=True)
@@ -62,6 +62,8 @@ class Chart:
     shade: Shade | None = None
     x_log: bool = False
     y_log: bool = False
+    #: Names of the bars of a ``"bars"`` series, at y = 0, 1, 2 ...
+    ticks: list[str] | None = None
 
 
 def check_path(path: Path) -> None:
@@ -127,6 +129,8 @@ def _draw(ax: object, chart: Chart) -> None:
     for series in chart.series:
         if series.style == "points":
             a.plot(series.x, series.y, "o", markersize=3, label=series.label)
+        elif series.style == "bars":  # horizontal: x the lengths, y the positions
+            a.barh(series.y, series.x, color="steelblue", label=series.label or None)
         elif series.style == "step":
             a.step(series.x, series.y, where="post", label=series.label)
         else:
@@ -138,6 +142,8 @@ def _draw(ax: object, chart: Chart) -> None:
         label = mark.label if mark.label and mark.label not in labelled else None
         labelled.add(mark.label)
         line(mark.value, linestyle=look[0], color=look[1], linewidth=1, alpha=0.8, label=label)
+    if chart.ticks is not None:
+        a.set_yticks(range(len(chart.ticks)), chart.ticks, fontsize=8)
     if chart.x_log:
         a.set_xscale("log")
     if chart.y_log:

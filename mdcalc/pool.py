@@ -16,11 +16,11 @@ import signal
 import time
 from collections import deque
 from collections.abc import Callable, Iterable, Iterator, Sequence
-from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
+from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 from contextlib import suppress
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TypeVar
+from typing import Any, TypeVar
 
 from mdcalc.errors import InputError, Problem
 
@@ -87,14 +87,19 @@ MAX_HELD = 10_000
 
 
 def pool_map(
-    func: Callable[[T], R], items: Sequence[T], jobs: int, on_done: Callable[[], None] | None = None
+    func: Callable[[T], R],
+    items: Sequence[T],
+    jobs: int,
+    on_done: Callable[[], None] | None = None,
+    on_error: Callable[[T, BaseException], R] | None = None,
 ) -> Iterator[R]:
     """``map(func, items)`` over ``jobs`` processes (in-process for 1), streamed: each
     result is yielded as soon as it and every earlier one are done, in input order.
 
     Chunks start at one item and grow to about CHUNK_SECONDS of work each. Workers
     ignore SIGINT (a terminal sends Ctrl-C to the whole process group); the parent's
-    KeyboardInterrupt kills them at once and goes up to the caller."""
+    KeyboardInterrupt kills them at once and goes up to the caller. ``on_error``
+    turns each item of a chunk that raised into a result (else the error goes up)."""
     if jobs <= 1 or len(items) <= 1:
         for item in items:
             yield func(item)
@@ -105,35 +110,57 @@ def pool_map(
     methods = multiprocessing.get_all_start_methods()
     context = multiprocessing.get_context("fork" if "fork" in methods else None)
     pool = ProcessPoolExecutor(max_workers=jobs, mp_context=context, initializer=_ignore_sigint)
+
+    def submit(chunk: Sequence[T]) -> Any:
+        return pool.submit(_run_chunk, func, chunk)
+
+    def first_done(running: set[Any]) -> set[Any]:
+        return wait(running, return_when=FIRST_COMPLETED)[0]
+
     try:
-        yield from _stream(pool, func, items, jobs, on_done)
+        yield from stream(
+            submit, first_done, items, 2 * jobs, CHUNK_SECONDS, on_done, on_error, MAX_CHUNK
+        )
     except BaseException:
         _kill(pool)
         raise
     pool.shutdown(wait=True)
 
 
-def _stream(
-    pool: ProcessPoolExecutor,
-    func: Callable[[T], R],
+def stream(
+    submit: Callable[[Sequence[T]], Any],
+    first_done: Callable[[set[Any]], set[Any]],
     items: Sequence[T],
-    jobs: int,
-    on_done: Callable[[], None] | None,
+    in_flight: int,
+    chunk_seconds: float,
+    on_done: Callable[[], None] | None = None,
+    on_error: Callable[[T, BaseException], R] | None = None,
+    max_chunk: int = 64,
 ) -> Iterator[R]:
-    order: deque[Future[tuple[list[R], float]]] = deque()  # chunks in input order
-    running: set[Future[tuple[list[R], float]]] = set()
+    """The streaming loop of :func:`pool_map` and of a dask cluster
+    (:func:`mdcalc.cluster.dask_map`): ``submit(chunk)`` gives a future of
+    ``_run_chunk``'s (results, seconds), ``first_done(running)`` the futures of
+    ``running`` that have finished (waiting for one). At most ``in_flight`` chunks
+    run at once; chunks grow from one item to about ``chunk_seconds`` of work."""
+    order: deque[tuple[Any, Sequence[T]]] = deque()  # chunks in input order
+    running: set[Any] = set()
     sent = held = 0
     per_item: float | None = None  # seconds of work per item, from finished chunks
     while sent < len(items) or order:
-        while sent < len(items) and len(running) < 2 * jobs and held < MAX_HELD:
-            size = 1 if per_item is None else int(CHUNK_SECONDS / max(per_item, 1e-6))
-            chunk = items[sent : sent + max(1, min(MAX_CHUNK, size))]
-            future = pool.submit(_run_chunk, func, chunk)
-            order.append(future)
+        while sent < len(items) and len(running) < in_flight and held < MAX_HELD:
+            size = 1 if per_item is None else int(chunk_seconds / max(per_item, 1e-6))
+            chunk = items[sent : sent + max(1, min(max_chunk, size))]
+            future = submit(chunk)
+            order.append((future, chunk))
             running.add(future)
             sent += len(chunk)
-        while order and order[0] not in running:  # finished and counted
-            results, _ = order.popleft().result()
+        while order and order[0][0] not in running:  # finished and counted
+            future, chunk = order.popleft()
+            error = future.exception()
+            if error is not None and on_error is not None:
+                results = [on_error(item, error) for item in chunk]
+            else:
+                results = future.result()[0]
             held -= len(results)
             for result in results:
                 yield result
@@ -141,14 +168,16 @@ def _stream(
                     on_done()
         if not order:
             continue
-        done, _ = wait(running, return_when=FIRST_COMPLETED)
+        done = first_done(running)
         running -= done
         for future in done:
             if future.exception() is None:
                 results, seconds = future.result()
-                held += len(results)
                 measured = seconds / max(len(results), 1)
                 per_item = measured if per_item is None else 0.5 * (per_item + measured)
+            else:
+                results = [None] * len(next(c for f, c in order if f is future))
+            held += len(results)
 
 
 def _run_chunk(func: Callable[[T], R], chunk: Sequence[T]) -> tuple[list[R], float]:

@@ -81,6 +81,17 @@ def solve_text(
     """Validate, solve and report a case file already read, keeping the result
     (:func:`solve_model`: the time limit, and no answer where floats give up)."""
     path = case.path
+    if "study" in case.data:
+        raise InputError(
+            path,
+            [
+                Problem(
+                    f"a study file (it has a [study] table): run it with mdcalc study {path}",
+                    "study",
+                    case.line_of(("study",)),
+                )
+            ],
+        )
     spec = problem_of(case)
     if expected_problem is not None and spec.name != expected_problem:
         raise InputError(

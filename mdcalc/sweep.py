@@ -261,22 +261,34 @@ def point_results(
 def choose_results(
     sweep: Plan, results: Sequence[str], time_limit: float | None = DEFAULT_SECONDS
 ) -> tuple[list[str], dict[str, str]]:
-    """The result columns and their units, from a run of the base case.
-
-    By default the key results: the quantities of the report's Methods tables (all
-    numeric results where it has none). ``--result`` keys must be numeric results.
-    """
-    from mdcalc.report import MethodsTable
-
+    """The result columns and their units, from a run of the base case
+    (:func:`key_results`)."""
     module = _module(sweep.problem)
     model = validate(module.Case, sweep.case)
-    _, report = solve_model(sweep.problem, module, model, time_limit)
+    return key_results(sweep.problem, module, model, results, "--result", time_limit)
+
+
+def key_results(
+    problem: str,
+    module: Any,
+    model: Any,
+    results: Sequence[str],
+    where: str,
+    time_limit: float | None = DEFAULT_SECONDS,
+) -> tuple[list[str], dict[str, str]]:
+    """The result keys and the units of every numeric result, from a run of the base
+    scene. By default the key results: the quantities of the report's Methods tables
+    (all numeric results where it has none). Asked-for ``results`` must be numeric
+    results (else :class:`InputError` at ``where``)."""
+    from mdcalc.report import MethodsTable
+
+    _, report = solve_model(problem, module, model, time_limit)
     numeric = _numeric(report)
     units = {key: unit for key, (_, unit) in numeric.items()}
     unknown = [k for k in results if k not in numeric]
     if unknown:
         raise InputError(
-            "--result",
+            where,
             [
                 Problem(f"no numeric result {k!r}; this case has: {', '.join(numeric)}")
                 for k in unknown
@@ -297,9 +309,11 @@ def evaluate(
     jobs: int,
     on_done: Callable[[int], None] | None = None,
     time_limit: float | None = DEFAULT_SECONDS,
+    mapper: Any = None,
 ) -> Table:
-    """Every grid point: vectorized where the problem offers it, else point by point,
-    each point under ``time_limit`` seconds.
+    """Every grid point: vectorized where the problem offers it (in this process),
+    else point by point, each point under ``time_limit`` seconds, on ``jobs``
+    processes or on ``mapper`` (:mod:`mdcalc.cluster`: a dask cluster).
 
     ``on_done(n)`` is told of every ``n`` points finished (for a progress bar).
     """
@@ -324,8 +338,9 @@ def evaluate(
         status = np.zeros(sweep.points, dtype=int)
         return Table(keys + wanted, units, columns, status, vectorized=True)
 
-    from mdcalc.pool import pool_map
+    from mdcalc.cluster import PoolMapper
 
+    run = mapper if mapper is not None else PoolMapper(jobs)
     path = str(sweep.case.path)
     tasks = [(path, sweep.problem, sweep.data_at(point), time_limit) for point in sweep.grid()]
     for key in wanted:
@@ -333,7 +348,7 @@ def evaluate(
     status = np.zeros(sweep.points, dtype=int)
     messages: list[str] = []
     done = (lambda: on_done(1)) if on_done is not None else None
-    for index, (code, values, message) in enumerate(pool_map(point_results, tasks, jobs, done)):
+    for index, (code, values, message) in enumerate(run(point_results, tasks, done)):
         status[index] = code
         if message:
             at = ", ".join(f"{k} = {grid[k][index]:g}" for k in keys)

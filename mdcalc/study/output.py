@@ -1,0 +1,305 @@
+"""A study's outcome as a rich report, JSON, a table of every sample (CSV or
+Parquet) and charts (histogram and CDF of each result, Sobol or rank-correlation
+bars)."""
+
+from __future__ import annotations
+
+import json
+import math
+from typing import Any
+
+from mdcalc.report import format_seconds, format_value
+from mdcalc.study import StudyResult
+from mdcalc.study.summary import PERCENTILES
+
+#: Version of the study JSON document (``"kind": "study"``).
+FORMAT = 1
+
+
+def _finite(value: float) -> float | None:
+    return value if math.isfinite(value) else None
+
+
+def to_dict(result: StudyResult) -> dict[str, Any]:
+    from mdcalc import __version__
+
+    plan, spec, ev = result.plan, result.plan.spec, result.evaluated
+    title = plan.case.data.get("title")
+    return {
+        "mdcalc": __version__,
+        "format": FORMAT,
+        "kind": "study",
+        "problem": plan.problem,
+        "case": str(plan.case.path),
+        "title": title if isinstance(title, str) else None,
+        "status": "ok" if any(s is not None for s in result.stats.values()) else "no-answer",
+        "samples": len(result.samples),
+        "sampler": spec.sampler,
+        "seed": spec.seed,
+        "how": result.how,
+        "seconds": result.seconds,
+        "samples_per_second": result.samples_per_second,
+        "budget": {"time_limit_s": result.time_limit},
+        "inputs": [
+            {
+                "key": item.key,
+                "unit": item.unit,
+                "distribution": item.dist.describe(item.unit),
+                "kind": item.dist.kind,
+                "drawn_min": float(result.samples[:, j].min()),
+                "drawn_max": float(result.samples[:, j].max()),
+            }
+            for j, item in enumerate(plan.inputs)
+        ],
+        "results": {
+            key: None
+            if s is None
+            else {
+                "unit": s.unit,
+                "count": s.count,
+                "mean": s.mean,
+                "sd": s.sd,
+                **{f"p{p}": v for p, v in s.percentiles.items()},
+                "min": s.low,
+                "max": s.high,
+            }
+            for key, s in result.stats.items()
+        },
+        "limits": [
+            {
+                "result": e.key,
+                "unit": e.unit,
+                "above": e.above,
+                "below": e.below,
+                "exceeded": e.exceeded,
+                "of": e.of,
+                "probability": _finite(e.probability),
+                "ci95": [e.low, e.high],
+                "note": e.note or None,
+            }
+            for e in result.limits
+        ],
+        "failed": {
+            "samples": sum(ev.counts.values()),
+            "by_kind": dict(ev.counts),
+            "first_reasons": {kind: list(reasons) for kind, reasons in ev.reasons.items()},
+        },
+        "sensitivity": None
+        if not spec.sensitivity
+        else {
+            "method": "Sobol (SALib: Saltelli design, sobol.analyze), 95 % bootstrap intervals",
+            "base_samples": spec.sensitivity_samples,
+            "runs": result.sensitivity_runs,
+            "how": result.sensitivity_how,
+            "indices": {
+                s.key: None
+                if s.note
+                else {
+                    name: {
+                        "S1": s.first[name],
+                        "S1_conf": s.first_conf[name],
+                        "ST": s.total[name],
+                        "ST_conf": s.total_conf[name],
+                    }
+                    for name in s.first
+                }
+                for s in result.sensitivity
+            },
+            "notes": {s.key: s.note for s in result.sensitivity if s.note},
+        },
+        "notes": [ev.note] if ev.note else [],
+    }
+
+
+def to_json(result: StudyResult, indent: int | None = 2) -> str:
+    return json.dumps(to_dict(result), indent=indent, ensure_ascii=False, allow_nan=False)
+
+
+def render_rich(result: StudyResult, console: Any) -> None:
+    from rich.table import Table
+
+    plan, spec, ev = result.plan, result.plan.spec, result.evaluated
+    title = plan.case.data.get("title") or plan.problem
+    n = len(result.samples)
+    console.print(f"[bold]Study: {title}[/bold]")
+    console.print(
+        f"{plan.problem}, {n:,} samples ({spec.sampler}, seed {spec.seed}), {result.how}; "
+        f"{format_seconds(result.seconds)}, {result.samples_per_second:,.0f} samples/s",
+        highlight=False,
+    )
+    inputs = Table(title="Inputs", title_justify="left")
+    for label in ("key", "distribution", "drawn min", "drawn max"):
+        inputs.add_column(label, justify="left" if label in ("key", "distribution") else "right")
+    for j, item in enumerate(plan.inputs):
+        column = result.samples[:, j]
+        inputs.add_row(
+            item.key,
+            item.dist.describe(item.unit),
+            format_value(float(column.min())),
+            format_value(float(column.max())),
+        )
+    console.print(inputs)
+    table = Table(title="Results", title_justify="left")
+    labels = ["result", "unit", "mean", "sd", *(f"P{p}" for p in PERCENTILES), "min", "max"]
+    for label in labels:
+        table.add_column(label, justify="left" if label in ("result", "unit") else "right")
+    for key, s in result.stats.items():
+        if s is None:
+            table.add_row(key, result.units.get(key, ""), *["—"] * (len(labels) - 2))
+            continue
+        numbers = [s.mean, s.sd, *s.percentiles.values(), s.low, s.high]
+        table.add_row(key, s.unit, *(format_value(v) for v in numbers))
+    console.print(table)
+    if result.limits:
+        limits = Table(title="Limits", title_justify="left")
+        for label in ("result", "exceeded when", "samples", "probability", "95 % interval", ""):
+            limits.add_column(label, justify="right" if label in ("samples",) else "left")
+        for e in result.limits:
+            limits.add_row(
+                e.key,
+                f"{e.text} {e.unit}".strip(),
+                f"{e.exceeded:,} of {e.of:,}",
+                format_value(e.probability, 4) if math.isfinite(e.probability) else "—",
+                f"{format_value(e.low, 3)} … {format_value(e.high, 3)}",
+                e.note,
+            )
+        console.print(limits)
+    if result.sensitivity:
+        sens = Table(
+            title=f"Sobol indices ({result.sensitivity_runs:,} runs, SALib; ± 95 % interval)",
+            title_justify="left",
+        )
+        for label in ("result", "input", "first order S1", "total ST"):
+            sens.add_column(label, justify="left" if label in ("result", "input") else "right")
+        for s in result.sensitivity:
+            if s.note:
+                sens.add_row(s.key, "—", s.note, "")
+                continue
+            for name in s.first:
+                sens.add_row(
+                    s.key,
+                    name,
+                    f"{s.first[name]:.3f} ± {s.first_conf[name]:.3f}",
+                    f"{s.total[name]:.3f} ± {s.total_conf[name]:.3f}",
+                )
+        console.print(sens)
+    failed = sum(ev.counts.values())
+    if failed:
+        console.print(f"[yellow]{failed:,} of {n:,} samples gave no values:[/yellow]")
+        for kind, count in ev.counts.items():
+            console.print(f"  {kind}: {count:,}", highlight=False, markup=False)
+            for reason in ev.reasons.get(kind, []):
+                console.print(f"    {reason}", highlight=False, markup=False)
+    else:
+        console.print(f"every sample answered ({n:,})", style="dim")
+    if ev.note:
+        console.print(ev.note, style="dim")
+
+
+def to_columns(result: StudyResult) -> tuple[list[str], list[Any]]:
+    """Every sample's inputs, results and exit status: headers and columns."""
+    plan = result.plan
+    headers = [f"{i.key} [{i.unit}]" if i.unit else i.key for i in plan.inputs]
+    columns = [result.samples[:, j] for j in range(len(plan.inputs))]
+    for key in result.keys:
+        unit = result.units.get(key, "")
+        headers.append(f"{key} [{unit}]" if unit else key)
+        columns.append(result.evaluated.values[key])
+    headers.append("status")
+    columns.append(result.evaluated.status)
+    return headers, columns
+
+
+def to_csv(result: StudyResult) -> str:
+    """One row per sample, values with 17 significant digits (they read back exactly)."""
+    headers, columns = to_columns(result)
+    lines = [",".join(headers)]
+    body = [["" if math.isnan(v) else repr(v) for v in column.tolist()] for column in columns[:-1]]
+    body.append([str(s) for s in columns[-1].tolist()])
+    lines += map(",".join, zip(*body, strict=True))
+    return "\n".join(lines) + "\n"
+
+
+def write_parquet(result: StudyResult, path: str) -> None:
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    headers, columns = to_columns(result)
+    pq.write_table(pa.table(dict(zip(headers, columns, strict=True))), path)
+
+
+def charts(result: StudyResult) -> list[Any]:
+    """A histogram and an empirical CDF per result (limits marked), and the Sobol
+    total indices (or, without them, Spearman rank correlations: a tornado)."""
+    import numpy as np
+
+    from mdcalc.plot import Chart, Mark, Series
+
+    out = []
+    limits = {e.key: e for e in result.limits}
+    for key, s in result.stats.items():
+        if s is None:
+            continue
+        column = result.evaluated.values[key]
+        finite = np.sort(column[np.isfinite(column)])
+        unit = f" [{s.unit}]" if s.unit else ""
+        counts, edges = np.histogram(finite, bins=min(60, max(10, int(math.sqrt(finite.size)))))
+        density = counts / max(finite.size, 1) / np.diff(edges)
+        marks = []
+        if key in limits:
+            for bound in (limits[key].above, limits[key].below):
+                if bound is not None:
+                    marks.append(Mark("x", bound, "limit"))
+        out.append(
+            Chart(
+                f"{key}: histogram of {finite.size:,} samples",
+                f"{key}{unit}",
+                "probability density",
+                [Series("", edges.tolist(), [*density.tolist(), 0.0], "step")],
+                marks,
+            )
+        )
+        step = max(1, finite.size // 2000)
+        xs = finite[::step]
+        ys = (np.arange(finite.size)[::step] + 1) / finite.size
+        out.append(
+            Chart(f"{key}: CDF", f"{key}{unit}", "P(result ≤ x)", [Series("", xs, ys)], marks)
+        )
+    names = result.plan.keys
+    for key in result.keys:
+        sens = next((s for s in result.sensitivity if s.key == key and not s.note), None)
+        if sens is not None:
+            values = [sens.total[n] for n in names]
+            label, what = "Sobol total index ST", "sensitivity"
+        else:
+            values = [_rank_correlation(result.samples[:, j], result.evaluated.values[key])
+                      for j in range(len(names))]  # fmt: skip
+            label, what = "Spearman rank correlation", "tornado"
+        if not any(math.isfinite(v) for v in values):
+            continue
+        order = sorted(
+            range(len(names)), key=lambda j: abs(values[j]) if math.isfinite(values[j]) else 0
+        )
+        out.append(
+            Chart(
+                f"{key}: {what}",
+                label,
+                "",
+                [Series("", [values[j] for j in order], list(range(len(order))), "bars")],
+                ticks=[names[j] for j in order],
+            )
+        )
+    return out
+
+
+def _rank_correlation(x: Any, y: Any) -> float:
+    import numpy as np
+
+    keep = np.isfinite(y)
+    if keep.sum() < 3:
+        return math.nan
+    rx = np.argsort(np.argsort(x[keep])).astype(float)
+    ry = np.argsort(np.argsort(y[keep])).astype(float)
+    if rx.std() == 0.0 or ry.std() == 0.0:
+        return math.nan
+    return float(np.corrcoef(rx, ry)[0, 1])
