@@ -176,7 +176,7 @@ def stream(
                 measured = seconds / max(len(results), 1)
                 per_item = measured if per_item is None else 0.5 * (per_item + measured)
             else:
-                results = [None] * len(next(c for f, c in order if f is future))
+                results = [None] * len(next(c for f, c in order if f is future))  # type: ignore[list-item]
             held += len(results)
 
 

@@ -87,9 +87,13 @@ def run(
 
     nominal = validate(module.Case, CaseText(case.path, case.text, study.scene_data))
     asked = list(spec.results or [])
-    asked += [k for k in spec.limits if k not in asked]
+    if asked:
+        asked += [k for k in spec.limits if k not in asked]
     keys, units = key_results(study.problem, module, nominal, asked, str(case.path), time_limit)
-    if spec.results is None:
+    if spec.results is None:  # the key results, and each limit's result
+        unknown = [k for k in spec.limits if k not in units]
+        if unknown:
+            key_results(study.problem, module, nominal, unknown, str(case.path), time_limit)
         keys += [k for k in spec.limits if k not in keys]
     if not keys:
         raise InputError(

@@ -65,7 +65,7 @@ class KernelChunk:
 
         from mdcalc.problems import PROBLEMS
 
-        module = PROBLEMS[self.problem].load()
+        module: Any = PROBLEMS[self.problem].load()
         model = validate(module.Case, CaseText(Path(self.path), "", copy.deepcopy(self.scene)))
         grid = {key: np.ascontiguousarray(block[:, j]) for j, key in enumerate(self.keys)}
         try:

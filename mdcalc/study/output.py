@@ -10,7 +10,7 @@ from typing import Any
 
 from mdcalc.report import format_seconds, format_value
 from mdcalc.study import StudyResult
-from mdcalc.study.summary import PERCENTILES
+from mdcalc.study.summary import PERCENTILES, Sobol
 
 #: Version of the study JSON document (``"kind": "study"``).
 FORMAT = 1
@@ -91,23 +91,24 @@ def to_dict(result: StudyResult) -> dict[str, Any]:
             "base_samples": spec.sensitivity_samples,
             "runs": result.sensitivity_runs,
             "how": result.sensitivity_how,
-            "indices": {
-                s.key: None
-                if s.note
-                else {
-                    name: {
-                        "S1": s.first[name],
-                        "S1_conf": s.first_conf[name],
-                        "ST": s.total[name],
-                        "ST_conf": s.total_conf[name],
-                    }
-                    for name in s.first
-                }
-                for s in result.sensitivity
-            },
-            "notes": {s.key: s.note for s in result.sensitivity if s.note},
+            "indices": {x.key: _indices(x) for x in result.sensitivity},
+            "notes": {x.key: x.note for x in result.sensitivity if x.note},
         },
         "notes": [ev.note] if ev.note else [],
+    }
+
+
+def _indices(sobol: Sobol) -> dict[str, dict[str, float]] | None:
+    if sobol.note:
+        return None
+    return {
+        name: {
+            "S1": sobol.first[name],
+            "S1_conf": sobol.first_conf[name],
+            "ST": sobol.total[name],
+            "ST_conf": sobol.total_conf[name],
+        }
+        for name in sobol.first
     }
 
 
@@ -171,16 +172,16 @@ def render_rich(result: StudyResult, console: Any) -> None:
         )
         for label in ("result", "input", "first order S1", "total ST"):
             sens.add_column(label, justify="left" if label in ("result", "input") else "right")
-        for s in result.sensitivity:
-            if s.note:
-                sens.add_row(s.key, "—", s.note, "")
+        for sob in result.sensitivity:
+            if sob.note:
+                sens.add_row(sob.key, "—", sob.note, "")
                 continue
-            for name in s.first:
+            for name in sob.first:
                 sens.add_row(
-                    s.key,
+                    sob.key,
                     name,
-                    f"{s.first[name]:.3f} ± {s.first_conf[name]:.3f}",
-                    f"{s.total[name]:.3f} ± {s.total_conf[name]:.3f}",
+                    f"{sob.first[name]:.3f} ± {sob.first_conf[name]:.3f}",
+                    f"{sob.total[name]:.3f} ± {sob.total_conf[name]:.3f}",
                 )
         console.print(sens)
     failed = sum(ev.counts.values())
@@ -263,7 +264,13 @@ def charts(result: StudyResult) -> list[Any]:
         xs = finite[::step]
         ys = (np.arange(finite.size)[::step] + 1) / finite.size
         out.append(
-            Chart(f"{key}: CDF", f"{key}{unit}", "P(result ≤ x)", [Series("", xs, ys)], marks)
+            Chart(
+                f"{key}: CDF",
+                f"{key}{unit}",
+                "P(result ≤ x)",
+                [Series("", xs.tolist(), ys.tolist())],
+                marks,
+            )
         )
     names = result.plan.keys
     for key in result.keys:

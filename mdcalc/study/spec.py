@@ -269,7 +269,9 @@ def plan(case: CaseText) -> Plan:
     module = spec_problem.load()
     scene_data = {k: v for k, v in case.data.items() if k not in ("study", "expect")}
     validate(module.Case, CaseText(case.path, case.text, scene_data))  # the nominal scene
-    own = {k: case.data[k] for k in ("problem", "title", "study", "expect") if k in case.data}
+    own: dict[str, Any] = {
+        k: case.data[k] for k in ("problem", "title", "study", "expect") if k in case.data
+    }
     doc = validate(StudyDoc, CaseText(case.path, case.text, own))
     spec = doc.study
     problems: list[Problem] = []
