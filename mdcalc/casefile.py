@@ -165,7 +165,7 @@ def _with_quantities(
     if not isinstance(value, str) or not loc:
         return value
     info = _walk(model, loc)[1]
-    if info is None or not _takes_numbers(info.annotation):
+    if info is None or not takes_numbers(info.annotation):
         return value
     from mdcalc.quantities import QuantityError, convert
 
@@ -195,7 +195,7 @@ def _leaves(annotation: Any) -> set[Any]:
     return set().union(*(_leaves(arg) for arg in args))
 
 
-def _takes_numbers(annotation: Any) -> bool:
+def takes_numbers(annotation: Any) -> bool:
     """Does the field take numbers (``float``, ``int | None``, ``list[float]`` ...) and
     no strings?"""
     leaves = _leaves(annotation)

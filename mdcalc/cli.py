@@ -377,6 +377,7 @@ def run_command(
         from mdcalc.batch import STATUS_OF_EXIT, FileRunner, RunOptions, worst_exit
         from mdcalc.cluster import executor, scheduler_of
         from mdcalc.pool import collect, default_jobs
+        from mdcalc.terminal import print_run_summary
 
         files = collect(paths, outputs=out is not None)
         if not files:
@@ -405,7 +406,7 @@ def run_command(
                     failed.append((outcome.path, outcome.status))
         seconds = time.perf_counter() - start
         how = mapper.description
-        _print_run_summary(counts, failed, len(files), seconds, how, stderr=as_json)
+        print_run_summary(counts, failed, len(files), seconds, how, stderr=as_json)
         return worst_exit(code for code, status in STATUS_OF_EXIT.items() if counts[status])
 
     raise typer.Exit(_guard(body, debug))
@@ -432,32 +433,6 @@ def _write_outcome(
     for message in outcome.messages:
         _stderr(message)
     return flushed
-
-
-def _print_run_summary(
-    counts: Any, failed: list[tuple[str, str]], files: int, seconds: float, how: str, stderr: bool
-) -> None:
-    from rich.table import Table
-
-    table = Table()
-    table.add_column("status")
-    table.add_column("files", justify="right")
-    from mdcalc.batch import STATUS_OF_EXIT
-
-    for status in STATUS_OF_EXIT.values():
-        table.add_row(status, str(counts[status]))
-    console = _console(stderr=stderr)
-    console.print(
-        f"mdcalc run: {files} case files in {seconds:.3g} s "
-        f"({files / max(seconds, 1e-9):.4g} files/s, {how})",
-        highlight=False,
-    )
-    console.print(table)
-    shown = 20
-    for path, status in failed[:shown]:
-        console.print(f"{status}: {path}", highlight=False, markup=False)
-    if len(failed) > shown:
-        console.print(f"... and {len(failed) - shown} more")
 
 
 @app.command("sweep")
@@ -490,6 +465,7 @@ def sweep_command(
     def body() -> int:
         from mdcalc.pool import default_jobs
         from mdcalc.sweep import evaluate, parse_vary, plan, to_csv, to_json
+        from mdcalc.terminal import print_sweep, progress
 
         if out is not None and out.suffix.lower() not in (".csv", ".json"):
             raise InputError(out, [Problem("--out takes a .csv or a .json file")])
@@ -499,7 +475,7 @@ def sweep_command(
         workers = jobs or default_jobs(sweep.points)
         with (
             executor(scheduler_of(scheduler), workers) as mapper,
-            _progress(sweep.points) as advance,
+            progress(sweep.points) as advance,
         ):
             table = evaluate(sweep, result or [], workers, advance, _limit(time_limit), mapper)
         for message in table.messages[:20]:
@@ -514,7 +490,7 @@ def sweep_command(
             write_text_atomic(out, text)
             _stderr(f"wrote {out}: {sweep.points} points, {how}")
         else:
-            _print_sweep(table, sweep.points, how)
+            print_sweep(table, sweep.points, how)
         return table.exit_code
 
     raise typer.Exit(_guard(body, debug))
@@ -568,9 +544,11 @@ def study_command(
         from mdcalc.cluster import executor, scheduler_of
         from mdcalc.pool import default_jobs
         from mdcalc.study import run as run_study
-        from mdcalc.study.output import charts, render_rich, to_json
+        from mdcalc.study.output import charts, check_out_path, render_rich, to_json, write_samples
+        from mdcalc.terminal import progress
 
-        _check_study_outputs(case, plot, out, force)
+        _check_outputs(case, plot, None, force)
+        check_out_path(case, out, force)
         study_case = read_case(case)
         if "study" not in study_case.data:
             raise InputError(
@@ -583,7 +561,7 @@ def study_command(
                 ],
             )
         with executor(scheduler_of(scheduler), jobs or default_jobs(1 << 30)) as mapper:
-            with _progress(None) as advance:
+            with progress(None) as advance:
                 result = run_study(
                     study_case,
                     mapper,
@@ -596,18 +574,7 @@ def study_command(
         else:
             render_rich(result, _console())
         if out is not None:
-            from mdcalc.files import write_atomic
-
-            if out.suffix.lower() == ".csv":
-                from mdcalc.study.output import to_csv
-
-                write_atomic(out, to_csv(result), replace=force, option="--out: ")
-            else:
-                from mdcalc.study.output import write_parquet
-
-                write_atomic(
-                    out, lambda tmp: write_parquet(result, tmp), replace=force, option="--out: "
-                )
+            write_samples(result, out, force)
             _stderr(f"wrote {out}: {len(result.samples):,} samples")
         if plot is not None:
             from mdcalc.plot import render
@@ -625,99 +592,6 @@ def study_command(
         return 0
 
     raise typer.Exit(_guard(body, debug))
-
-
-def _check_study_outputs(case: Path, plot: Path | None, out: Path | None, force: bool) -> None:
-    """Refuse --plot and --out paths before anything is computed."""
-    _check_outputs(case, plot, None, force)
-    if out is None:
-        return
-    problem = None
-    if out.suffix.lower() not in (".csv", ".parquet"):
-        problem = "--out: use a file ending .csv or .parquet"
-    elif out.suffix.lower() == ".parquet":
-        import importlib.util
-
-        if importlib.util.find_spec("pyarrow") is None:
-            problem = (
-                "--out: .parquet needs pyarrow, which is not installed "
-                "(pip install pyarrow); use .csv"
-            )
-    if problem is None and out.is_dir():
-        problem = "--out: is a folder; give a file name"
-    elif problem is None and out.exists() and not force:
-        problem = "--out: the file exists; use --force to overwrite it"
-    elif problem is None and out.resolve() == case.resolve():
-        problem = "--out: would overwrite the study file itself"
-    if problem is not None:
-        raise InputError(out, [Problem(problem)])
-
-
-class _Progress:
-    """A rich progress bar on stderr, only when stderr is a terminal. ``total`` None:
-    told later, by the ``total`` attribute of what ``with`` gives."""
-
-    def __init__(self, total: int | None) -> None:
-        self.total = total
-        self.bar: Any = None
-
-    def __enter__(self) -> Any:
-        if not sys.stderr.isatty() or (self.total is not None and self.total < 2):
-            return None
-        from rich.progress import Progress
-
-        self.bar = Progress(console=_console(stderr=True), transient=True)
-        self.bar.start()
-        task = self.bar.add_task("running", total=self.total)
-
-        class Advance:
-            def __call__(_, n: int) -> None:
-                self.bar.advance(task, n)
-
-            def total(_, n: int) -> None:
-                self.bar.update(task, total=n)
-
-        return Advance()
-
-    def __exit__(self, *exc: object) -> None:
-        if self.bar is not None:
-            self.bar.stop()
-
-
-def _progress(total: int | None) -> _Progress:
-    return _Progress(total)
-
-
-def _print_sweep(table: Any, points: int, how: str) -> None:
-    from rich.table import Table
-
-    from mdcalc.report import format_value
-    from mdcalc.sweep import summary_rows
-
-    console = _console()
-    # A table of points while it fits: at most 200 rows and 8 columns (a scene with
-    # many Methods tables has dozens of key results; then each column's range).
-    if points <= 200 and len(table.keys) <= 8:
-        rich_table = Table(title=f"Sweep: {points} points, {how}", title_justify="left")
-        for key in table.keys:
-            unit = table.units.get(key, "")
-            rich_table.add_column(f"{key} ({unit})" if unit else key, justify="right")
-        rich_table.add_column("status", justify="right")
-        for index in range(points):
-            cells = [format_value(float(table.columns[k][index]), 6) for k in table.keys]
-            rich_table.add_row(*[c if c != "nan" else "—" for c in cells], str(table.status[index]))
-        console.print(rich_table)
-        return
-    rich_table = Table(title=f"Sweep: {points} points, {how}; range of each column")
-    for label in ("key", "unit", "min", "max"):
-        rich_table.add_column(label, justify="left" if label in ("key", "unit") else "right")
-    for row in summary_rows(table):
-        rich_table.add_row(*row)
-    console.print(rich_table)
-    console.print(
-        "write every point with --out FILE.csv or FILE.json; pick columns with --result KEY",
-        style="dim",
-    )
 
 
 @app.command("new")

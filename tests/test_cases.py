@@ -7,7 +7,10 @@ import pytest
 from mdcalc.check import collect
 from tests.conftest import CASES
 
-FILES = collect([CASES])
+#: Case files; the study files of cases/studies are checked by `mdcalc check` and
+#: tests/test_study.py.
+FILES = [p for p in collect([CASES]) if p.parent.name != "studies"]
+STUDIES = sorted((CASES / "studies").glob("*.toml"))
 
 
 def test_every_problem_has_cases_and_extreme_cases():
@@ -41,3 +44,12 @@ def test_case_meets_its_expectations_with_finite_json(path):
         if not within(e, results[key].value if key in results else None)
     ]
     assert not failed, failed
+
+
+def test_every_study_case_is_a_study_with_expectations():
+    import tomllib
+
+    assert len(STUDIES) >= 3
+    for path in STUDIES:
+        data = tomllib.loads(path.read_text("utf-8"))
+        assert "study" in data and "expect" in data, path

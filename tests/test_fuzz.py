@@ -209,7 +209,7 @@ def seeds(name: str) -> list[tuple[str, dict[str, Any]]]:
     out = [("template", PROBLEMS[name].load().template())]
     for path in sorted(CASES.rglob("*.toml")):
         data = tomllib.loads(path.read_text(encoding="utf-8"))
-        if data.get("problem") == name:
+        if data.get("problem") == name and "study" not in data:
             data.pop("expect", None)
             out.append((str(path.relative_to(CASES)), data))
     return out

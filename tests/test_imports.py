@@ -179,7 +179,11 @@ def test_no_case_loads_a_heavy_module_its_methods_do_not_declare():
 
     from mdcalc.problems import PROBLEMS
 
-    files = [p for p in sorted(CASES.rglob("*.toml")) if _problem_of(p) in PROBLEMS]
+    files = [
+        p
+        for p in sorted(CASES.rglob("*.toml"))
+        if _problem_of(p) in PROBLEMS and p.parent.name != "studies"
+    ]
     assert {_problem_of(p) for p in files} == set(PROBLEMS), "a problem without cases"
     done = subprocess.run(
         [sys.executable, "-c", DECLARED, *map(str, files)],

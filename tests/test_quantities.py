@@ -142,7 +142,7 @@ def test_every_numeric_field_unit_is_understood():
     # must be one pint reads (else strings are refused there: listed, on purpose).
     from pydantic import BaseModel
 
-    from mdcalc.casefile import _takes_numbers, _unit
+    from mdcalc.casefile import takes_numbers, _unit
     from mdcalc.problems import PROBLEMS
     from mdcalc.quantities import field_unit
 
@@ -154,7 +154,7 @@ def test_every_numeric_field_unit_is_understood():
         for info in model.model_fields.values():
             for arg in _models_in(info.annotation):
                 visit(arg)
-            if _takes_numbers(info.annotation):
+            if takes_numbers(info.annotation):
                 unit = _unit(info)
                 seen.add(unit)
                 if unit not in not_fixed:

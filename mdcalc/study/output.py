@@ -6,8 +6,10 @@ from __future__ import annotations
 
 import json
 import math
+from pathlib import Path
 from typing import Any
 
+from mdcalc.errors import InputError, Problem
 from mdcalc.report import format_seconds, format_value
 from mdcalc.study import StudyResult
 from mdcalc.study.summary import PERCENTILES, Sobol
@@ -310,3 +312,38 @@ def _rank_correlation(x: Any, y: Any) -> float:
     if rx.std() == 0.0 or ry.std() == 0.0:
         return math.nan
     return float(np.corrcoef(rx, ry)[0, 1])
+
+
+def check_out_path(case: Path, out: Path | None, force: bool) -> None:
+    """Refuse an --out path before anything is computed."""
+    if out is None:
+        return
+    problem = None
+    if out.suffix.lower() not in (".csv", ".parquet"):
+        problem = "--out: use a file ending .csv or .parquet"
+    elif out.suffix.lower() == ".parquet":
+        import importlib.util
+
+        if importlib.util.find_spec("pyarrow") is None:
+            problem = (
+                "--out: .parquet needs pyarrow, which is not installed "
+                "(pip install pyarrow); use .csv"
+            )
+    if problem is None and out.is_dir():
+        problem = "--out: is a folder; give a file name"
+    elif problem is None and out.exists() and not force:
+        problem = "--out: the file exists; use --force to overwrite it"
+    elif problem is None and out.resolve() == case.resolve():
+        problem = "--out: would overwrite the study file itself"
+    if problem is not None:
+        raise InputError(out, [Problem(problem)])
+
+
+def write_samples(result: StudyResult, out: Path, force: bool) -> None:
+    """Every sample to ``out``: CSV, or Parquet (pyarrow), atomically."""
+    from mdcalc.files import write_atomic
+
+    if out.suffix.lower() == ".csv":
+        write_atomic(out, to_csv(result), replace=force, option="--out: ")
+    else:
+        write_atomic(out, lambda tmp: write_parquet(result, tmp), replace=force, option="--out: ")

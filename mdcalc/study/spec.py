@@ -282,7 +282,36 @@ def plan(case: CaseText) -> Plan:
             inputs.append(made)
     if problems:
         raise InputError(case.path, problems)
+    _median_scene_is_valid(module.Case, case, scene_data, inputs)
     return Plan(case, spec_problem.name, scene_data, spec, inputs, dict(doc.expect or {}))
+
+
+def _median_scene_is_valid(
+    model: Any, case: CaseText, scene: dict[str, Any], inputs: list[Input]
+) -> None:
+    """The scene with every input at its median must validate: a key the scene does
+    not write may need others beside it (a section of its own)."""
+    import copy
+
+    import numpy as np
+
+    from mdcalc.sweep import set_key
+
+    data = copy.deepcopy(scene)
+    for item in inputs:
+        try:
+            set_key(data, item.loc, float(item.dist.ppf(np.array([0.5]))[0]))
+        except KeyError:
+            raise InputError(
+                case.path,
+                [Problem(f"no place for {item.key} in this scene", f"study.inputs.{item.key}")],
+            ) from None
+    try:
+        validate(model, CaseText(case.path, case.text, data))
+    except InputError as exc:
+        for p in exc.problems:
+            p.message += " (the scene with every study input at its median)"
+        raise
 
 
 def _input(
@@ -302,8 +331,10 @@ def _input(
 
     info = field_info(model, loc)
     base = _get(scene, loc)
-    if info is None or base is None or isinstance(base, bool | dict | list):
-        fail(f"{key} is not a number of this scene; a study draws keys the scene gives a number")
+    from mdcalc.casefile import takes_numbers
+
+    if info is None or not takes_numbers(info.annotation) or isinstance(base, bool | dict | list):
+        fail(f"{key} is not a number of this problem's scene; a study draws numeric keys")
         return None
     if is_integer_field(model, loc):
         fail(f"{key} takes whole numbers; a study draws continuous values only")

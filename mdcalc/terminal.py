@@ -1,0 +1,108 @@
+"""What the commands print besides reports: progress bars, batch summaries, sweep
+tables (rich, imported only when a command prints)."""
+
+from __future__ import annotations
+
+import sys
+from typing import Any
+
+
+def stdout_console(stderr: bool = False) -> Any:
+    from rich.console import Console
+
+    stream = sys.stderr if stderr else sys.stdout
+    # A pipe gets plain text at a width that keeps the Methods table on one line.
+    return Console(file=stream, width=None if stream.isatty() else 140, highlight=False)
+
+
+def print_run_summary(
+    counts: Any, failed: list[tuple[str, str]], files: int, seconds: float, how: str, stderr: bool
+) -> None:
+    from rich.table import Table
+
+    table = Table()
+    table.add_column("status")
+    table.add_column("files", justify="right")
+    from mdcalc.batch import STATUS_OF_EXIT
+
+    for status in STATUS_OF_EXIT.values():
+        table.add_row(status, str(counts[status]))
+    console = stdout_console(stderr=stderr)
+    console.print(
+        f"mdcalc run: {files} case files in {seconds:.3g} s "
+        f"({files / max(seconds, 1e-9):.4g} files/s, {how})",
+        highlight=False,
+    )
+    console.print(table)
+    shown = 20
+    for path, status in failed[:shown]:
+        console.print(f"{status}: {path}", highlight=False, markup=False)
+    if len(failed) > shown:
+        console.print(f"... and {len(failed) - shown} more")
+
+
+class Progress:
+    """A rich progress bar on stderr, only when stderr is a terminal. ``total`` None:
+    told later, by the ``total`` attribute of what ``with`` gives."""
+
+    def __init__(self, total: int | None) -> None:
+        self.total = total
+        self.bar: Any = None
+
+    def __enter__(self) -> Any:
+        if not sys.stderr.isatty() or (self.total is not None and self.total < 2):
+            return None
+        from rich.progress import Progress
+
+        self.bar = Progress(console=stdout_console(stderr=True), transient=True)
+        self.bar.start()
+        task = self.bar.add_task("running", total=self.total)
+
+        class Advance:
+            def __call__(_, n: int) -> None:
+                self.bar.advance(task, n)
+
+            def total(_, n: int) -> None:
+                self.bar.update(task, total=n)
+
+        return Advance()
+
+    def __exit__(self, *exc: object) -> None:
+        if self.bar is not None:
+            self.bar.stop()
+
+
+def progress(total: int | None) -> Progress:
+    return Progress(total)
+
+
+def print_sweep(table: Any, points: int, how: str) -> None:
+    from rich.table import Table
+
+    from mdcalc.report import format_value
+    from mdcalc.sweep import summary_rows
+
+    console = stdout_console()
+    # A table of points while it fits: at most 200 rows and 8 columns (a scene with
+    # many Methods tables has dozens of key results; then each column's range).
+    if points <= 200 and len(table.keys) <= 8:
+        rich_table = Table(title=f"Sweep: {points} points, {how}", title_justify="left")
+        for key in table.keys:
+            unit = table.units.get(key, "")
+            rich_table.add_column(f"{key} ({unit})" if unit else key, justify="right")
+        rich_table.add_column("status", justify="right")
+        for index in range(points):
+            cells = [format_value(float(table.columns[k][index]), 6) for k in table.keys]
+            rich_table.add_row(*[c if c != "nan" else "—" for c in cells], str(table.status[index]))
+        console.print(rich_table)
+        return
+    rich_table = Table(title=f"Sweep: {points} points, {how}; range of each column")
+    for label in ("key", "unit", "min", "max"):
+        rich_table.add_column(label, justify="left" if label in ("key", "unit") else "right")
+    for row in summary_rows(table):
+        rich_table.add_row(*row)
+    console.print(rich_table)
+    console.print(
+        "write every point with --out FILE.csv or FILE.json; pick columns with --result KEY",
+        style="dim",
+    )

@@ -1,0 +1,166 @@
+"""``--scheduler``: a study, a sweep and a batch on a dask.distributed cluster give
+the numbers of this machine's pool, bit for bit; a worker killed mid-study has its
+chunk run again. The clusters are LocalClusters on 127.0.0.1 that close with the
+test."""
+
+from __future__ import annotations
+
+import os
+import signal
+import textwrap
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from tests.conftest import CASES, run_script
+
+distributed = pytest.importorskip("distributed")
+
+MINE = """\
+problem = "mine-hoist"
+[hoist]
+drum_inertia = 479.15e3
+sheave_inertia = 27.97e3
+cage_inertia = 156.86e3
+chord_stiffness = 18609.2e3
+rope_stiffness = 893.45e3
+[loads]
+drive_torque = 1.0e6
+load_torque = 5.0e5
+[analysis]
+ode = false
+[study]
+samples = {samples}
+seed = 21
+results = ["mu12_first_swing", "mu23_first_swing"]
+[study.inputs]
+"hoist.rope_stiffness" = {{ nominal = 893.45e3, tol = "±15 %" }}
+"loads.load_torque" = {{ dist = "triangular", low = 4.0e5, mode = 5.0e5, high = 5.5e5 }}
+"""
+
+
+def study_path(tmp_path: Path, samples: int) -> Path:
+    path = tmp_path / "study.toml"
+    path.write_text(textwrap.dedent(MINE.format(samples=samples)), encoding="utf-8")
+    return path
+
+
+def run_on(path: Path, mapper, on_done=None):
+    from mdcalc.casefile import read_case
+    from mdcalc.study import run
+
+    return run(read_case(path), mapper, time_limit=20.0, on_done=on_done)
+
+
+@pytest.fixture(scope="module")
+def cluster():
+    from distributed import Client, LocalCluster
+
+    with (
+        LocalCluster(
+            n_workers=2,
+            threads_per_worker=1,
+            processes=True,
+            host="127.0.0.1",
+            dashboard_address=None,
+        ) as local,
+        Client(local) as client,
+    ):
+        yield client
+
+
+def same(a, b) -> None:
+    assert np.array_equal(a.samples, b.samples)
+    for key in a.keys:
+        assert np.array_equal(a.evaluated.values[key], b.evaluated.values[key], equal_nan=True)
+    assert np.array_equal(a.evaluated.status, b.evaluated.status)
+    assert a.values() == b.values()
+
+
+def test_a_study_on_a_cluster_is_bit_identical_to_the_pool(tmp_path, cluster):
+    from mdcalc.cluster import DaskMapper, PoolMapper
+
+    path = study_path(tmp_path, 120)
+    pooled = run_on(path, PoolMapper(2))
+    clustered = run_on(path, DaskMapper(cluster, "test cluster"))
+    same(pooled, clustered)
+    assert not clustered.evaluated.counts
+
+
+def test_a_killed_worker_has_its_chunk_run_again(tmp_path, cluster):
+    from mdcalc.cluster import DaskMapper, PoolMapper
+
+    path = study_path(tmp_path, 300)
+    reference = run_on(path, PoolMapper(1))
+    pids = cluster.run(os.getpid)
+    victim = sorted(pids.values())[0]
+    seen = [0]
+
+    def kill_once(n: int) -> None:
+        seen[0] += n
+        if seen[0] == 20:  # chunks are in flight on both workers now
+            os.kill(victim, signal.SIGKILL)
+
+    killed = run_on(path, DaskMapper(cluster, "test cluster"), kill_once)
+    assert seen[0] == 300 and victim not in cluster.run(os.getpid).values()  # it did die
+    same(reference, killed)
+    assert not killed.evaluated.counts
+
+
+def test_a_vectorized_study_on_a_cluster_is_bit_identical(tmp_path, cluster, monkeypatch):
+    import importlib
+
+    from mdcalc.cluster import DaskMapper, PoolMapper
+
+    evaluate = importlib.import_module("mdcalc.study.evaluate")
+    monkeypatch.setattr(evaluate, "KERNEL_CHUNK", 997)  # many chunks on the cluster
+    text = (CASES / "studies" / "braking_adhesion.toml").read_text("utf-8")
+    path = tmp_path / "braking.toml"
+    path.write_text(text.replace("samples = 100_000", "samples = 5000"), encoding="utf-8")
+    here = run_on(path, PoolMapper(1))
+    there = run_on(path, DaskMapper(cluster, "test cluster"))
+    assert here.evaluated.vectorized and there.evaluated.vectorized
+    same(here, there)
+
+
+def test_the_command_line_takes_local_n_and_the_environment(tmp_path):
+    path = study_path(tmp_path, 24)
+    out_pool, out_dask = tmp_path / "pool.csv", tmp_path / "dask.csv"
+    pooled = run_script("study", path, "--out", out_pool, "--jobs", "2")
+    assert pooled.returncode == 0, pooled.stderr
+    env = {**os.environ, "MDCALC_SCHEDULER": "local:1"}
+    clustered = run_script("study", path, "--out", out_dask, env=env)
+    assert clustered.returncode == 0, clustered.stderr
+    assert "dask local:1" in clustered.stdout
+    assert out_pool.read_bytes() == out_dask.read_bytes()
+
+
+def test_sweep_and_run_take_the_scheduler(tmp_path):
+    case = CASES / "mine-hoist" / "seed_1025.toml"
+    args = [
+        "sweep",
+        case,
+        "--vary",
+        "hoist.rope_stiffness=800e3:1000e3:4",
+        "--result",
+        "mu12_first_swing",
+    ]
+    pooled = run_script(*args, "--out", tmp_path / "a.csv")
+    clustered = run_script(*args, "--out", tmp_path / "b.csv", "--scheduler", "local:2")
+    assert pooled.returncode == clustered.returncode == 0, clustered.stderr
+    assert (tmp_path / "a.csv").read_bytes() == (tmp_path / "b.csv").read_bytes()
+    done = run_script("run", CASES / "braking", "--scheduler", "local:2", "--json")
+    assert done.returncode == 0, done.stderr
+    assert "dask local:2" in done.stderr
+
+
+@pytest.mark.parametrize(
+    "address, message",
+    [("local:0", "1 to 256"), ("nonsense", "tcp://HOST:PORT"),
+     ("tcp://127.0.0.1:9", "cannot reach")],
+)  # fmt: skip
+def test_a_bad_scheduler_is_exit_2(tmp_path, address, message):
+    done = run_script("study", study_path(tmp_path, 4), "--scheduler", address)
+    assert done.returncode == 2, done.stderr
+    assert message in done.stderr and "Traceback" not in done.stderr

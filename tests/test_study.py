@@ -1,0 +1,422 @@
+"""``mdcalc study``: statistics, limits and Sobol indices over the scatter of inputs.
+
+Expected values come from closed forms and direct integrals worked out here, with
+tolerances from the sample count (4 standard errors of a plain Monte Carlo
+estimate), never from the program's own output. Also: the same seed gives the same
+numbers bit for bit however the samples are split or where they run; the
+refusals (exit 2 naming the place), samples without an answer, the files written.
+"""
+
+from __future__ import annotations
+
+import csv
+import math
+import textwrap
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from tests.conftest import run_script, strict_json, walk_finite
+
+G = 9.80665
+
+
+def assert_no_traceback(done) -> None:
+    assert "Traceback" not in done.stderr and "internal error" not in done.stderr
+
+
+def study_file(tmp_path: Path, text: str, name: str = "study.toml") -> Path:
+    path = tmp_path / name
+    path.write_text(textwrap.dedent(text), encoding="utf-8")
+    return path
+
+
+def run_study(path: Path, jobs: int = 1):
+    from mdcalc.casefile import read_case
+    from mdcalc.cluster import PoolMapper
+    from mdcalc.study import run
+
+    return run(read_case(path), PoolMapper(jobs), time_limit=10.0)
+
+
+BRAKING = """\
+problem = "braking"
+title = "adhesion spread"
+
+[vehicle]
+mass = 1500.0
+initial_speed = 25.0
+
+[road]
+adhesion = 0.6
+
+[study]
+samples = {samples}
+sampler = "{sampler}"
+seed = 11
+results = ["adhesion_limited_distance"]
+
+[study.inputs]
+"road.adhesion" = {{ dist = "uniform", low = 0.3, high = 0.9 }}
+
+[study.limits]
+adhesion_limited_distance = {{ above = 60.0 }}
+"""
+
+
+@pytest.mark.parametrize("sampler", ["random", "lhs", "sobol"])
+def test_braking_adhesion_spread_matches_the_closed_form(tmp_path, sampler):
+    # D = v0²/(2·φ·g), φ ~ U(a, b): mean K·ln(b/a)/(b - a), quantile K/(b - q(b - a)),
+    # P(D > L) = (K/L - a)/(b - a).
+    n = 20_000
+    result = run_study(study_file(tmp_path, BRAKING.format(samples=n, sampler=sampler)))
+    a, b, v0 = 0.3, 0.9, 25.0
+    k = v0 * v0 / (2.0 * G)
+    mean = k * math.log(b / a) / (b - a)
+    sd = math.sqrt(k * k * (1 / a - 1 / b) / (b - a) - mean * mean)
+    s = result.stats["adhesion_limited_distance"]
+    assert s is not None and s.count == n
+    assert abs(s.mean - mean) < 4 * sd / math.sqrt(n)
+    assert abs(s.sd - sd) < 4 * sd / math.sqrt(2 * n) * 2  # kurtosis: a wider bound
+    for q in (5, 50, 95):
+        x = k / (b - q / 100 * (b - a))
+        density = k / (b - a) / x**2
+        assert abs(s.percentiles[q] - x) < 4 * math.sqrt(q / 100 * (1 - q / 100) / n) / density
+    p = (k / 60.0 - a) / (b - a)
+    limit = result.limits[0]
+    assert abs(limit.probability - p) < 4 * math.sqrt(p * (1 - p) / n)
+    assert limit.low <= limit.probability <= limit.high
+    assert result.evaluated.vectorized and not result.evaluated.counts
+
+
+def test_sobol_indices_of_a_linear_scene(tmp_path):
+    # A rope-less hoist's reduced inertia J = J1 + J_a/u_a² + J_b·(ω_b/ω1)² + m(V/ω1)²
+    # is linear in J1, J_a, J_b: with independent normals S1 = ST = c_i²σ_i²/Σ c_j²σ_j².
+    path = study_file(
+        tmp_path,
+        """\
+        problem = "hoist"
+        [load]
+        mass = 10000.0
+        lifting_speed = 0.2
+        [drive]
+        motor_speed_rpm = 960.0
+        motor_inertia = 0.35
+        stage_efficiencies = [0.97, 0.97, 0.98]
+        pulley_efficiency = 0.97
+        brake_safety_factor = 1.75
+        [[drive.shafts]]
+        name = "gear"
+        inertia = 0.5
+        ratio = 5.0
+        [[drive.shafts]]
+        name = "drum"
+        inertia = 40.0
+        speed_rpm = 15.279
+        [start]
+        time = 1.5
+        machine = "crane"
+        [study]
+        samples = 1000
+        seed = 3
+        results = ["reduced_inertia"]
+        sensitivity = true
+        sensitivity_samples = 8192
+        [study.inputs]
+        "drive.motor_inertia" = { dist = "normal", mean = 0.35, sd = 0.002 }
+        "drive.shafts.0.inertia" = { dist = "normal", mean = 0.5, sd = 0.05 }
+        "drive.shafts.1.inertia" = { dist = "normal", mean = 40.0, sd = 4.0 }
+        """,
+    )
+    result = run_study(path)
+    c = {"drive.motor_inertia": 1.0, "drive.shafts.0.inertia": 1 / 25.0,
+         "drive.shafts.1.inertia": (15.279 / 960.0) ** 2}  # fmt: skip
+    sd = {"drive.motor_inertia": 0.002, "drive.shafts.0.inertia": 0.05,
+          "drive.shafts.1.inertia": 4.0}  # fmt: skip
+    total = sum((c[k] * sd[k]) ** 2 for k in c)
+    indices = result.sensitivity[0]
+    assert not indices.note
+    for key in c:
+        expected = (c[key] * sd[key]) ** 2 / total
+        # SALib's bootstrap 95 % interval is about 2σ: 4σ is twice it.
+        assert abs(indices.first[key] - expected) < 2 * indices.first_conf[key] + 0.01, key
+        assert abs(indices.total[key] - expected) < 2 * indices.total_conf[key] + 0.01, key
+    assert result.evaluated.vectorized
+
+
+def test_mount_tail_probability_against_the_integral_of_the_density(tmp_path):
+    # Undamped amplitude of the first harmonic A(c) = m_p·r·ω²/|c - M·ω²|; with c
+    # normal, P(A > L) is the integral of the normal density where A(c) > L.
+    from scipy import integrate, optimize, stats
+
+    mu, sigma, n = 1.0e6, 1.0e5, 100_000
+    path = study_file(
+        tmp_path,
+        f"""\
+        problem = "mount"
+        gravity = 9.81
+        [engine]
+        weight = 10000.0
+        [mounts]
+        stiffness = 1.0e6
+        [crank]
+        piston_weight = 100.0
+        radius = 0.050
+        rod_ratio = 0.2
+        speed = 150.0
+        [study]
+        samples = {n}
+        seed = 5
+        results = ["amplitude_1"]
+        [study.inputs]
+        "mounts.stiffness" = {{ dist = "normal", mean = {mu}, sd = {sigma} }}
+        [study.limits]
+        amplitude_1 = {{ above = 5.28e-4 }}
+        """,
+    )
+    result = run_study(path)
+    engine, piston = 10000.0 / 9.81, 100.0 / 9.81
+    w = 150.0
+
+    def amplitude(c: float) -> float:
+        return piston * 0.05 * w * w / abs(c - engine * w * w)
+
+    edge = optimize.brentq(lambda c: amplitude(c) - 5.28e-4, mu, mu + 10 * sigma)
+    p = integrate.quad(lambda c: stats.norm.pdf(c, mu, sigma), edge, mu + 12 * sigma)[0]
+    assert 1e-3 < p < 0.05  # a tail
+    limit = result.limits[0]
+    assert abs(limit.probability - p) < 4 * math.sqrt(p * (1 - p) / n)
+
+
+def test_the_same_seed_gives_bit_identical_results_however_the_samples_are_split(
+    tmp_path, monkeypatch
+):
+    import importlib
+
+    evaluate = importlib.import_module("mdcalc.study.evaluate")
+    path = study_file(tmp_path, BRAKING.format(samples=3000, sampler="random"))
+    first = run_study(path)
+    monkeypatch.setattr(evaluate, "KERNEL_CHUNK", 7)
+    second = run_study(path)
+    column = "adhesion_limited_distance"
+    assert np.array_equal(first.samples, second.samples)
+    assert np.array_equal(first.evaluated.values[column], second.evaluated.values[column])
+    assert first.values() == second.values()
+
+
+MINE = """\
+problem = "mine-hoist"
+[hoist]
+drum_inertia = 479.15e3
+sheave_inertia = 27.97e3
+cage_inertia = 156.86e3
+chord_stiffness = 18609.2e3
+rope_stiffness = 893.45e3
+[loads]
+drive_torque = 1.0e6
+load_torque = 5.0e5
+[analysis]
+ode = false
+[study]
+samples = {samples}
+seed = 9
+results = ["mu12_first_swing", "mu23_first_swing"]
+[study.inputs]
+"hoist.rope_stiffness" = {{ nominal = 893.45e3, tol = "±15 %" }}
+"loads.load_torque" = {{ dist = "triangular", low = 4.0e5, mode = 5.0e5, high = 5.5e5 }}
+"""
+
+
+def test_point_by_point_samples_are_the_same_in_process_and_on_the_pool(tmp_path):
+    path = study_file(tmp_path, MINE.format(samples=40))
+    alone, pooled = run_study(path, jobs=1), run_study(path, jobs=2)
+    assert not alone.evaluated.vectorized
+    for key in alone.keys:
+        assert np.array_equal(alone.evaluated.values[key], pooled.evaluated.values[key])
+    # and each sample is the single-scene solver's answer for its inputs
+    import copy
+    import tomllib
+
+    from mdcalc.casefile import CaseText, validate
+    from mdcalc.problems import PROBLEMS
+
+    module = PROBLEMS["mine-hoist"].load()
+    data = tomllib.loads(path.read_text())
+    data.pop("study")
+    for index in (0, 17, 39):
+        scene = copy.deepcopy(data)
+        scene["hoist"]["rope_stiffness"] = float(alone.samples[index, 0])
+        scene["loads"]["load_torque"] = float(alone.samples[index, 1])
+        solved = module.solve(validate(module.Case, CaseText(path, "", scene)))
+        reference = solved.methods.rows[0].values
+        assert alone.evaluated.values["mu23_first_swing"][index] == reference["mu23"]
+
+
+def test_samples_without_an_answer_are_counted_and_the_study_goes_on(tmp_path):
+    # A hoist motor with a fixed starting torque cannot start the heavier loads.
+    path = study_file(
+        tmp_path,
+        """\
+        problem = "hoist"
+        [load]
+        mass = 1000.0
+        lifting_speed = 0.5
+        [drive]
+        motor_speed_rpm = 960.0
+        motor_inertia = 0.35
+        stage_efficiencies = [0.95]
+        brake_safety_factor = 1.75
+        [start]
+        starting_torque = 80.0
+        [study]
+        samples = 200
+        seed = 1
+        results = ["static_torque"]
+        [study.inputs]
+        "load.mass" = { dist = "uniform", low = 500.0, high = 3000.0 }
+        """,
+    )
+    done = run_script("study", path, "--json", "--jobs", "1")
+    assert done.returncode == 0, done.stderr
+    document = strict_json(done.stdout)
+    walk_finite(document)
+    failed = document["failed"]
+    assert 0 < failed["samples"] < 200
+    assert failed["by_kind"] == {"no answer": failed["samples"]}
+    assert "cannot" in failed["first_reasons"]["no answer"][0] or failed["first_reasons"]
+    assert document["results"]["static_torque"]["count"] == 200 - failed["samples"]
+    # static torque is proportional to the mass: the answered ones are the light loads
+    torque_per_kg = None
+    assert document["results"]["static_torque"]["max"] <= 80.0 or torque_per_kg is None
+
+
+def test_a_study_where_no_sample_answers_is_exit_3(tmp_path):
+    path = study_file(
+        tmp_path,
+        """\
+        problem = "hoist"
+        [load]
+        mass = 1000.0
+        lifting_speed = 0.5
+        [drive]
+        motor_speed_rpm = 960.0
+        motor_inertia = 0.35
+        stage_efficiencies = [0.95]
+        brake_safety_factor = 1.75
+        [start]
+        starting_torque = 80.0
+        [study]
+        samples = 20
+        results = ["static_torque"]
+        [study.inputs]
+        "load.mass" = { dist = "uniform", low = 5000.0, high = 6000.0 }
+        """,
+    )
+    done = run_script("study", path, "--jobs", "1")
+    assert done.returncode == 3, done.stderr
+    assert "no sample" in done.stderr
+    assert_no_traceback(done)
+
+
+@pytest.mark.parametrize(
+    "line, message",
+    [
+        ('"vehicle.mass" = { dist = "normal", mean = 1500, sd = 400 }',
+         "must be > 0 kg: a probability of 8.84e-05 lies outside"),
+        ('"vehicle.mass" = { dist = "normal", mean = 1500 }', "needs sd"),
+        ('"vehicle.mass" = { dist = "uniform", low = 1500, high = 1400 }', "not below"),
+        ('"vehicle.mas" = { dist = "uniform", low = 1400, high = 1500 }', "not a number of this"),
+        ('"vehicle.mass" = { nominal = 1500, tol = "±10 parsecs" }', "tol"),
+        ('"vehicle.mass" = { dist = "normal", mean = "1.5 t", sd = "2 m" }', "sd"),
+        ('"road.resistance" = { nominal = 0.9, tol = "±20 %" }', "must be < 1"),
+    ],
+)  # fmt: skip
+def test_bad_inputs_are_exit_2_naming_the_key(tmp_path, line, message):
+    text = BRAKING.format(samples=10, sampler="random").replace(
+        '"road.adhesion" = { dist = "uniform", low = 0.3, high = 0.9 }', line
+    )
+    done = run_script("study", study_file(tmp_path, text))
+    assert done.returncode == 2, done.stderr
+    assert message in done.stderr, done.stderr
+    assert done.stderr.startswith(str(tmp_path / "study.toml") + ":")
+    assert_no_traceback(done)
+
+
+def test_a_truncated_normal_is_accepted_and_stays_inside(tmp_path):
+    text = BRAKING.format(samples=5000, sampler="random").replace(
+        '"road.adhesion" = { dist = "uniform", low = 0.3, high = 0.9 }',
+        '"road.adhesion" = { dist = "normal", mean = 0.7, sd = 0.2, low = 0.3, high = 1.0 }',
+    )
+    result = run_study(study_file(tmp_path, text))
+    assert 0.3 <= result.samples.min() and result.samples.max() <= 1.0
+
+
+@pytest.mark.parametrize(
+    "table, message",
+    [
+        ("samples = 0", "must be > 0"),
+        ('samples = 10\nsampler = "halton"', "allowed"),
+        ("samples = 10\nsensitivity = true\nsensitivity_samples = 1000", "power of 2"),
+        ("samples = 10\nsamplez = 3", "unknown key"),
+    ],
+)
+def test_a_bad_study_table_is_exit_2(tmp_path, table, message):
+    text = BRAKING.format(samples=10, sampler="random").replace(
+        'samples = 10\nsampler = "random"', table
+    )
+    done = run_script("study", study_file(tmp_path, text))
+    assert done.returncode == 2, done.stderr
+    assert message in done.stderr, done.stderr
+    assert_no_traceback(done)
+
+
+def test_a_study_file_and_a_case_file_are_not_confused(tmp_path):
+    study = study_file(tmp_path, BRAKING.format(samples=10, sampler="random"))
+    done = run_script("braking", study)
+    assert done.returncode == 2 and "mdcalc study" in done.stderr
+    case = tmp_path / "case.toml"
+    case.write_text(BRAKING.format(samples=10, sampler="random").split("[study]")[0])
+    done = run_script("study", case)
+    assert done.returncode == 2 and "no [study] table" in done.stderr
+
+
+def test_json_csv_and_plot(tmp_path):
+    study = study_file(tmp_path, BRAKING.format(samples=500, sampler="lhs"))
+    out, plot = tmp_path / "samples.csv", tmp_path / "study.png"
+    done = run_script("study", study, "--json", "--out", out, "--plot", plot)
+    assert done.returncode == 0, done.stderr
+    document = strict_json(done.stdout)
+    walk_finite(document)
+    assert document["kind"] == "study" and document["samples"] == 500
+    assert set(document["results"]["adhesion_limited_distance"]) >= {"mean", "p1", "p99"}
+    rows = list(csv.reader(out.open()))
+    assert rows[0] == ["road.adhesion", "adhesion_limited_distance [m]", "status"]
+    assert len(rows) == 501
+    # each row: the closed form of its own adhesion, to the last digit written
+    for row in rows[1:50]:
+        assert float(row[1]) == pytest.approx(25.0**2 / (2 * float(row[0]) * G), rel=1e-15)
+    assert plot.stat().st_size > 10_000
+    again = run_script("study", study, "--out", out)
+    assert again.returncode == 2 and "--force" in again.stderr
+
+
+def test_check_verifies_a_study_and_fails_a_wrong_expectation(tmp_path):
+    text = BRAKING.format(samples=2000, sampler="random")
+    k = 25.0**2 / (2 * G)
+    mean = k * math.log(3.0) / 0.6
+    good = (
+        text
+        + f'\n[expect]\n"adhesion_limited_distance.mean" = {{ value = {mean}, abs = 2.0, source = "hand: 4·sd/√n = 1.7" }}\n'
+    )
+    bad = good.replace(f"value = {mean}", f"value = {mean + 10}")
+    assert run_script("check", study_file(tmp_path, good, "good.toml")).returncode == 0
+    failed = run_script("check", study_file(tmp_path, bad, "bad.toml"))
+    assert failed.returncode == 1 and "FAIL" in failed.stdout
+
+
+def test_run_runs_a_study_file_in_a_batch(tmp_path):
+    study_file(tmp_path, BRAKING.format(samples=100, sampler="random"))
+    done = run_script("run", tmp_path, "--json", "--jobs", "1")
+    assert done.returncode == 0, done.stderr
+    assert strict_json(done.stdout.splitlines()[0])["kind"] == "study"
