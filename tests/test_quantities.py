@@ -142,7 +142,7 @@ def test_every_numeric_field_unit_is_understood():
     # must be one pint reads (else strings are refused there: listed, on purpose).
     from pydantic import BaseModel
 
-    from mdcalc.casefile import takes_numbers, _unit
+    from mdcalc.casefile import _unit, takes_numbers
     from mdcalc.problems import PROBLEMS
     from mdcalc.quantities import field_unit
 

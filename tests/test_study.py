@@ -407,7 +407,8 @@ def test_check_verifies_a_study_and_fails_a_wrong_expectation(tmp_path):
     mean = k * math.log(3.0) / 0.6
     good = (
         text
-        + f'\n[expect]\n"adhesion_limited_distance.mean" = {{ value = {mean}, abs = 2.0, source = "hand: 4·sd/√n = 1.7" }}\n'
+        + '\n[expect]\n"adhesion_limited_distance.mean" = '
+        + f'{{ value = {mean}, abs = 2.0, source = "hand: 4·sd/√n = 1.7" }}\n'
     )
     bad = good.replace(f"value = {mean}", f"value = {mean + 10}")
     assert run_script("check", study_file(tmp_path, good, "good.toml")).returncode == 0
