@@ -33,7 +33,7 @@ test: $(VENV)/.installed-test
 # Figures for the README's performance section; not part of `make test` (timings
 # are printed, never asserted). `make bench AGAINST=../old-checkout` also compares the
 # start-up of every problem with another checkout, in the same run.
-bench: $(VENV)/.installed
+bench: $(VENV)/.installed-test
 	$(BIN)/python bench/bench.py $(if $(AGAINST),--against $(AGAINST))
 
 clean:

@@ -220,6 +220,44 @@ def mine_hoist() -> None:
         row(f"mine-hoist {name}: modal solution (the reference)", f"{modal * 1e3:.2f} ms", "", True)
 
 
+def studies(folder: Path) -> None:
+    """10⁶ braking samples (the kernel), 10⁴ mine-hoist samples on the pool against a
+    LocalCluster of 2 workers, one Sobol study."""
+    braking = (ROOT / "cases" / "studies" / "braking_adhesion.toml").read_text("utf-8")
+    big = folder / "braking_1e6.toml"
+    big.write_text(
+        braking.replace("samples = 100_000", "samples = 1_000_000")
+        .replace("sensitivity = true", "sensitivity = false")
+        .split("[expect]")[0],
+        encoding="utf-8",
+    )
+    best = min(wall([MDCALC, "study", str(big)]) for _ in range(3))
+    row("mdcalc study: 10^6 braking samples (kernel), whole command", f"{best:.2f} s", "<= 3 s",
+        best <= 3)  # fmt: skip
+    mine = (ROOT / "cases" / "studies" / "mine_hoist_rope.toml").read_text("utf-8")
+    many = folder / "mine_1e4.toml"
+    many.write_text(
+        mine.replace("samples = 512", "samples = 10_000")
+        .replace("sensitivity = true", "sensitivity = false")
+        .split("[expect]")[0],
+        encoding="utf-8",
+    )
+    pool = wall([MDCALC, "study", str(many), "--jobs", "2", "--out", str(folder / "pool.csv")])
+    dask = wall([MDCALC, "study", str(many), "--scheduler", "local:2",
+                 "--out", str(folder / "dask.csv")])  # fmt: skip
+    same = (folder / "pool.csv").read_bytes() == (folder / "dask.csv").read_bytes()
+    row("mdcalc study: 10^4 mine-hoist samples, pool of 2", f"{pool:.1f} s", "", True)
+    row(
+        "  the same on a LocalCluster of 2 (dask), cluster/pool",
+        f"{dask:.1f} s, ratio {dask / pool:.2f}",
+        "identical",
+        same,
+    )
+    sobol = ROOT / "cases" / "studies" / "coupling_scatter.toml"
+    best = min(wall([MDCALC, "study", str(sobol)]) for _ in range(3))
+    row("mdcalc study: coupling, 10^5 samples + Sobol (4096 runs)", f"{best:.2f} s", "", True)
+
+
 def main() -> None:
     os.environ.pop("NO_COLOR", None)
     print(f"mdcalc benchmarks: {os.cpu_count()} cores, Python {sys.version.split()[0]}")
@@ -231,6 +269,7 @@ def main() -> None:
         batch(folder)
         sweep(folder)
         mine_hoist()
+        studies(folder)
         shutil.rmtree(folder / "cases", ignore_errors=True)
 
 
