@@ -102,7 +102,7 @@ def set_key(data: dict[str, Any], loc: tuple[str | int, ...], value: Any) -> Non
         raise KeyError(last)
 
 
-def _get_key(data: Any, loc: tuple[str | int, ...]) -> Any:
+def get_key(data: Any, loc: tuple[str | int, ...]) -> Any:
     node = data
     for part in loc:
         try:
@@ -158,7 +158,7 @@ def plan(path: Path, varies: Sequence[Vary]) -> Plan:
         raise InputError(path, [Problem(f"{points:,} points; the limit is {MAX_POINTS:,}")])
     axes: list[list[float | int]] = []
     for vary in varies:
-        base = _get_key(case.data, vary.loc)
+        base = get_key(case.data, vary.loc)
         quantity = any(c.loc == vary.loc for c in case.conversions)  # "52.5 N*m/deg"
         if (
             isinstance(base, bool)

@@ -102,3 +102,28 @@ def series(c: Any, start: str) -> tuple[Any, Any]:
     found = [s for s in c.series if s.label.startswith(start)]
     assert len(found) == 1, [s.label for s in c.series]
     return np.asarray(found[0].x, dtype=float), np.asarray(found[0].y, dtype=float)
+
+
+#: A study of seed 002's mine hoist (point by point, the ODE rows off): rope stiffness
+#: ±15 %, load torque triangular (tests/test_study.py, tests/test_cluster.py).
+MINE_STUDY = """\
+problem = "mine-hoist"
+[hoist]
+drum_inertia = 479.15e3
+sheave_inertia = 27.97e3
+cage_inertia = 156.86e3
+chord_stiffness = 18609.2e3
+rope_stiffness = 893.45e3
+[loads]
+drive_torque = 1.0e6
+load_torque = 5.0e5
+[analysis]
+ode = false
+[study]
+samples = {samples}
+seed = {seed}
+results = ["mu12_first_swing", "mu23_first_swing"]
+[study.inputs]
+"hoist.rope_stiffness" = {{ nominal = 893.45e3, tol = "±15 %" }}
+"loads.load_torque" = {{ dist = "triangular", low = 4.0e5, mode = 5.0e5, high = 5.5e5 }}
+"""

@@ -7,42 +7,19 @@ from __future__ import annotations
 
 import os
 import signal
-import textwrap
 from pathlib import Path
 
 import numpy as np
 import pytest
 
-from tests.conftest import CASES, run_script
+from tests.conftest import CASES, MINE_STUDY, run_script
 
 distributed = pytest.importorskip("distributed")
-
-MINE = """\
-problem = "mine-hoist"
-[hoist]
-drum_inertia = 479.15e3
-sheave_inertia = 27.97e3
-cage_inertia = 156.86e3
-chord_stiffness = 18609.2e3
-rope_stiffness = 893.45e3
-[loads]
-drive_torque = 1.0e6
-load_torque = 5.0e5
-[analysis]
-ode = false
-[study]
-samples = {samples}
-seed = 21
-results = ["mu12_first_swing", "mu23_first_swing"]
-[study.inputs]
-"hoist.rope_stiffness" = {{ nominal = 893.45e3, tol = "±15 %" }}
-"loads.load_torque" = {{ dist = "triangular", low = 4.0e5, mode = 5.0e5, high = 5.5e5 }}
-"""
 
 
 def study_path(tmp_path: Path, samples: int) -> Path:
     path = tmp_path / "study.toml"
-    path.write_text(textwrap.dedent(MINE.format(samples=samples)), encoding="utf-8")
+    path.write_text(MINE_STUDY.format(samples=samples, seed=21), encoding="utf-8")
     return path
 
 

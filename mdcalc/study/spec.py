@@ -330,7 +330,9 @@ def _input(
         problems.append(Problem(message, path, line))
 
     info = field_info(model, loc)
-    base = _get(scene, loc)
+    from mdcalc.sweep import get_key
+
+    base = get_key(scene, loc)
     from mdcalc.casefile import takes_numbers
 
     if info is None or not takes_numbers(info.annotation) or isinstance(base, bool | dict | list):
@@ -472,13 +474,3 @@ def _outside_bounds(info: Any, dist: Distribution, unit: str) -> str | None:
     if max(abs(lowest), abs(highest)) > MAGNITUDE_LIMIT:
         return f"{dist.describe(unit)} draws beyond ±{MAGNITUDE_LIMIT:g}; narrow it"
     return None
-
-
-def _get(data: Any, loc: tuple[str | int, ...]) -> Any:
-    node = data
-    for part in loc:
-        try:
-            node = node[part]
-        except (KeyError, IndexError, TypeError):
-            return None
-    return node
