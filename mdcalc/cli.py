@@ -576,7 +576,8 @@ def study_command(
         if out is not None:
             write_samples(result, out, force)
             _stderr(f"wrote {out}: {len(result.samples):,} samples")
-        if plot is not None:
+        answered = any(s is not None for s in result.stats.values())
+        if plot is not None and answered:
             from mdcalc.plot import render
 
             render(
@@ -586,7 +587,7 @@ def study_command(
                 replace=force,
             )
             _stderr(f"wrote {plot}")
-        if all(s is None for s in result.stats.values()):
+        if not answered:
             _stderr(f"{case}: error: no answer: no sample gave a value")
             return EXIT_NO_ANSWER
         return 0

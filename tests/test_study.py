@@ -259,6 +259,8 @@ def test_samples_without_an_answer_are_counted_and_the_study_goes_on(tmp_path):
         results = ["static_torque"]
         [study.inputs]
         "load.mass" = { dist = "uniform", low = 500.0, high = 3000.0 }
+        [study.limits]
+        static_torque = { above = 70.0 }
         """,
     )
     done = run_script("study", path, "--json", "--jobs", "1")
@@ -274,6 +276,9 @@ def test_samples_without_an_answer_are_counted_and_the_study_goes_on(tmp_path):
     assert "cannot" in failed["first_reasons"]["no answer"][0]
     assert document["results"]["static_torque"]["count"] == answered
     assert document["results"]["static_torque"]["max"] < 80.0  # only the loads it starts
+    # the limit's share is over the samples with a value, and the note says so
+    assert document["limits"][0]["of"] == answered
+    assert f"{failed['samples']} had none" in document["limits"][0]["note"]
 
 
 def test_a_study_where_no_sample_answers_is_exit_3(tmp_path):
@@ -287,9 +292,9 @@ def test_a_study_where_no_sample_answers_is_exit_3(tmp_path):
         "load.mass" = { dist = "uniform", low = 5000.0, high = 6000.0 }
         """,
     )
-    done = run_script("study", path, "--jobs", "1")
+    done = run_script("study", path, "--jobs", "1", "--plot", tmp_path / "none.png")
     assert done.returncode == 3, done.stderr
-    assert "no sample" in done.stderr
+    assert "no sample" in done.stderr and not (tmp_path / "none.png").exists()
     assert_no_traceback(done)
 
 
@@ -395,3 +400,44 @@ def test_run_runs_a_study_file_in_a_batch(tmp_path):
     done = run_script("run", tmp_path, "--json", "--jobs", "1")
     assert done.returncode == 0, done.stderr
     assert strict_json(done.stdout.splitlines()[0])["kind"] == "study"
+
+
+@pytest.mark.parametrize("low_sigmas", [0.13, 2.0, 7.0])
+def test_a_normal_truncated_in_its_upper_tail_has_the_truncated_mean(tmp_path, low_sigmas):
+    # E[X | X > a] = μ + σ·φ(α)/(1 - Φ(α)), α = (a - μ)/σ (upper-tail windows are
+    # drawn from the survival function: 1 - q would round to 1 at 7σ).
+    from scipy import stats
+
+    mu, sigma, n = 1500.0, 75.0, 20_000
+    low = mu + low_sigmas * sigma
+    text = BRAKING.format(samples=n, sampler="random").replace(
+        '"road.adhesion" = { dist = "uniform", low = 0.3, high = 0.9 }',
+        f'"vehicle.mass" = {{ dist = "normal", mean = {mu}, sd = {sigma}, low = {low} }}',
+    )
+    result = run_study(study_file(tmp_path, text))
+    drawn = result.samples[:, 0]
+    assert drawn.min() >= low and np.isfinite(drawn).all()
+    alpha = low_sigmas
+    mean = mu + sigma * stats.norm.pdf(alpha) / stats.norm.sf(alpha)
+    sd = sigma * math.sqrt(
+        1
+        + alpha * stats.norm.pdf(alpha) / stats.norm.sf(alpha)
+        - (stats.norm.pdf(alpha) / stats.norm.sf(alpha)) ** 2
+    )
+    assert abs(drawn.mean() - mean) < 4 * sd / math.sqrt(n)
+
+
+def test_a_list_item_is_held_to_the_bounds_of_its_item_type(tmp_path):
+    # stage efficiencies are list[Annotated[float, Field(gt=0, le=1)]]
+    path = study_file(
+        tmp_path,
+        WEAK_HOIST.replace("starting_torque = 80.0", "time = 1.5")
+        + """\
+samples = 10
+[study.inputs]
+"drive.stage_efficiencies.0" = { dist = "uniform", low = 0.9, high = 1.1 }
+""",
+    )
+    done = run_script("study", path)
+    assert done.returncode == 2, done.stderr
+    assert "must be <= 1" in done.stderr and "0.5 lies outside" in done.stderr

@@ -302,13 +302,15 @@ def charts(result: StudyResult) -> list[Any]:
 
 
 def _rank_correlation(x: Any, y: Any) -> float:
+    """Spearman's rank correlation over the samples with a value (average ranks for
+    ties); NaN where either side does not vary."""
     import numpy as np
+    from scipy.stats import rankdata
 
     keep = np.isfinite(y)
     if keep.sum() < 3:
         return math.nan
-    rx = np.argsort(np.argsort(x[keep])).astype(float)
-    ry = np.argsort(np.argsort(y[keep])).astype(float)
+    rx, ry = rankdata(x[keep]), rankdata(y[keep])
     if rx.std() == 0.0 or ry.std() == 0.0:
         return math.nan
     return float(np.corrcoef(rx, ry)[0, 1])

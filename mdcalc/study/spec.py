@@ -114,6 +114,9 @@ class StudySpec(CaseModel):
 
     @model_validator(mode="after")
     def _power_of_two(self) -> StudySpec:
+        if self.results is not None and len(set(self.results)) != len(self.results):
+            twice = sorted({r for r in self.results if self.results.count(r) > 1})
+            raise ValueError(f"results names {', '.join(twice)} more than once")
         n = self.sensitivity_samples
         if n & (n - 1):
             raise ValueError(
@@ -182,19 +185,63 @@ class Distribution:
         lo, hi = self._window()
         return min(1.0, max(0.0, (self._base_cdf(x) - lo) / (hi - lo)))
 
+    def _z_window(self) -> tuple[float, float]:
+        """The truncation in standard-normal units (normal; lognormal in log space)."""
+        if self.kind == "normal":
+            mu, sigma = self.a, self.b
+            to = lambda x: (x - mu) / sigma  # noqa: E731
+        else:
+            mu, sigma = self._log
+            to = lambda x: (math.log(x) - mu) / sigma if x > 0 else -math.inf  # noqa: E731
+        z_lo = -math.inf if self.lower is None else to(self.lower)
+        z_hi = math.inf if self.upper is None else to(self.upper)
+        return z_lo, z_hi
+
+    def mass(self) -> float:
+        """The probability the truncation keeps (1 without one), from the nearer tail."""
+        if self.kind not in ("normal", "lognormal"):
+            return 1.0
+        from scipy.special import ndtr
+
+        z_lo, z_hi = self._z_window()
+        if z_lo > 0.0:
+            return float(ndtr(-z_lo) - ndtr(-z_hi))
+        return float(ndtr(z_hi) - ndtr(z_lo))
+
+    def _z(self, u: Any) -> Any:
+        """Standard-normal quantiles of probabilities ``u`` inside the truncation,
+        taken in the upper tail where the window lies there (1 - q would round)."""
+        import numpy as np
+        from scipy.special import ndtr, ndtri
+
+        u = np.asarray(u, dtype=float)
+        if self.lower is None and self.upper is None:
+            return ndtri(u)
+        z_lo, z_hi = self._z_window()
+        if z_lo > 0.0:
+            s_lo, s_hi = ndtr(-z_lo), ndtr(-z_hi)
+            z = -ndtri(s_lo - u * (s_lo - s_hi))
+        else:
+            f_lo, f_hi = ndtr(z_lo), ndtr(z_hi)
+            z = ndtri(f_lo + u * (f_hi - f_lo))
+        return np.clip(z, z_lo, z_hi)
+
     def ppf(self, u: Any) -> Any:
         """Values at probabilities ``u`` (a numpy array in (0, 1))."""
         import numpy as np
-        from scipy.special import ndtri
 
-        lo, hi = self._window()
-        q = lo + np.asarray(u, dtype=float) * (hi - lo) if (lo, hi) != (0.0, 1.0) else u
-        if self.kind == "normal":
-            x = self.a + self.b * ndtri(q)
-        elif self.kind == "lognormal":
-            mu, sigma = self._log
-            x = np.exp(mu + sigma * ndtri(q))
-        elif self.kind == "uniform":
+        if self.kind in ("normal", "lognormal"):
+            z = self._z(u)
+            if self.kind == "normal":
+                x = self.a + self.b * z
+            else:
+                mu, sigma = self._log
+                x = np.exp(mu + sigma * z)
+            if self.lower is not None or self.upper is not None:  # rounding at the cut
+                x = np.clip(x, self.lower, self.upper)
+            return x
+        q = np.asarray(u, dtype=float)
+        if self.kind == "uniform":
             x = self.a + q * (self.b - self.a)
         else:
             low, mode, high = self.a, self.c, self.b
@@ -389,8 +436,7 @@ def _input(
             fail(f"low = {lower:g} is not below high = {upper:g}")
             return None
         dist = Distribution(kind, mean, sd, lower=lower, upper=upper)
-        lo_cdf, hi_cdf = dist._window()
-        if hi_cdf - lo_cdf < 1e-12:
+        if not dist.mass() > 1e-300:
             fail("the truncation leaves no probability (low and high are far in one tail)")
             return None
     elif kind == "uniform":
@@ -407,7 +453,7 @@ def _input(
             fail(f"need low <= mode <= high and low < high (got {low:g}, {mode:g}, {high:g})")
             return None
         dist = Distribution("triangular", low, high, mode)
-    bounds_problem = _outside_bounds(info, dist, unit)
+    bounds_problem = _outside_bounds(info, loc, dist, unit)
     if bounds_problem is not None:
         fail(bounds_problem)
         return None
@@ -441,14 +487,36 @@ def _tolerance(tol: Any, nominal: float | None, unit: str, fail: Any) -> float |
         return None
 
 
-def _outside_bounds(info: Any, dist: Distribution, unit: str) -> str | None:
+def bound_marks(info: Any, loc: tuple[str | int, ...]) -> list[Any]:
+    """The gt/ge/lt/le marks of the field at ``loc``: its own, or for a list item
+    (``drive.stage_efficiencies.0``) those of the item type
+    (``list[Annotated[float, Field(gt=0, le=1)]]``)."""
+    from typing import get_args, get_origin
+
+    if not loc or not isinstance(loc[-1], int):
+        return list(getattr(info, "metadata", []))
+    marks: list[Any] = []
+    stack = [getattr(info, "annotation", None)]
+    while stack:
+        kind = stack.pop()
+        if get_origin(kind) is list:
+            for item in get_args(kind)[:1]:
+                for extra in getattr(item, "__metadata__", ()):
+                    marks += list(getattr(extra, "metadata", [extra]))
+        else:
+            stack.extend(get_args(kind))
+    return marks
+
+
+def _outside_bounds(info: Any, loc: Any, dist: Distribution, unit: str) -> str | None:
     """Why ``dist`` can draw a value the field refuses (its gt/ge/lt/le and the
-    magnitude limit), with the probability outside; None if it cannot."""
+    magnitude limit), with the probability outside; None if it cannot. A truncation
+    at the bound itself leaves no probability outside and passes."""
     import numpy as np
 
     lowest, highest = (float(v) for v in dist.ppf(np.array([U_MIN, U_MAX])))
     u = f" {unit}" if unit else ""
-    for item in getattr(info, "metadata", []):
+    for item in bound_marks(info, loc):
         for name, op in (("gt", ">"), ("ge", ">="), ("lt", "<"), ("le", "<=")):
             bound = getattr(item, name, None)
             if bound is None:
@@ -462,6 +530,8 @@ def _outside_bounds(info: Any, dist: Distribution, unit: str) -> str | None:
             if not bad:
                 continue
             outside = dist.cdf(bound) if name in ("gt", "ge") else 1.0 - dist.cdf(bound)
+            if outside == 0.0:
+                continue
             edge = lowest if name in ("gt", "ge") else highest
             return (
                 f"{dist.describe(unit)} draws values down to {edge:.6g}{u}"

@@ -86,6 +86,8 @@ def wilson(k: int, n: int, z: float = Z95) -> tuple[float, float]:
 def exceedance(
     key: str, unit: str, column: Any, above: float | None, below: float | None
 ) -> Exceedance:
+    """The share of the samples with a value that lie outside the limit. Samples
+    without a value are not counted (the report notes how many there were)."""
     import numpy as np
 
     finite = column[np.isfinite(column)]
@@ -105,6 +107,9 @@ def exceedance(
         result.note = f"only {k} samples exceeded: too few to trust the estimate; more samples"
     elif n - k < FEW:
         result.note = f"only {n - k} samples stayed within: too few to trust the estimate"
+    if 0 < n < column.size:
+        missing = f"of the {n:,} samples with a value; {column.size - n:,} had none"
+        result.note = f"{result.note}; {missing}" if result.note else missing
     return result
 
 
@@ -133,7 +138,8 @@ def sobol(key: str, names: list[str], problem: dict[str, Any], column: Any, seed
     if missing:
         out.note = f"{missing} samples of the design have no value: no indices"
         return out
-    if float(np.var(column)) == 0.0:
+    spread = float(np.std(column))
+    if spread <= 1e-12 * max(float(np.max(np.abs(column))), 1e-300):  # rounding only
         out.note = "the result does not vary over the inputs: no indices"
         return out
     from SALib.analyze import sobol as analyze
