@@ -441,3 +441,13 @@ samples = 10
     done = run_script("study", path)
     assert done.returncode == 2, done.stderr
     assert "must be <= 1" in done.stderr and "0.5 lies outside" in done.stderr
+
+
+def test_parquet_keeps_every_sample(tmp_path):
+    pq = pytest.importorskip("pyarrow.parquet")  # an optional extra: skipped without it
+    study = study_file(tmp_path, BRAKING.format(samples=300, sampler="sobol"))
+    done = run_script("study", study, "--out", tmp_path / "s.parquet")
+    assert done.returncode == 0, done.stderr
+    table = pq.read_table(tmp_path / "s.parquet")
+    assert table.num_rows == 300
+    assert table.column_names == ["road.adhesion", "adhesion_limited_distance [m]", "status"]
