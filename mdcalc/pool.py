@@ -17,6 +17,7 @@ import time
 from collections import deque
 from collections.abc import Callable, Iterable, Iterator, Sequence
 from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+from concurrent.futures.process import BrokenProcessPool
 from contextlib import suppress
 from dataclasses import dataclass
 from pathlib import Path
@@ -107,24 +108,71 @@ def pool_map(
                 on_done()
         return
     warm()
+    done = 0  # items yielded so far
+    while done < len(items):
+        pool = _new_pool(jobs)
+        try:
+            for result in _pool_stream(pool, func, items[done:], jobs, on_done, on_error):
+                yield result
+                done += 1
+        except BrokenProcessPool:
+            # A worker died (killed by the system, out of memory...): every chunk in
+            # flight is lost with it. With on_error the first unfinished item runs
+            # alone in a process of its own, so that only an item that itself kills
+            # its process is an error, and the rest go on in a new pool.
+            _kill(pool)
+            if on_error is None:
+                raise
+            yield _alone(func, items[done], on_error)
+            done += 1
+            if on_done is not None:
+                on_done()
+            continue
+        except BaseException:
+            _kill(pool)
+            raise
+        pool.shutdown(wait=True)
+
+
+def _new_pool(jobs: int) -> ProcessPoolExecutor:
     methods = multiprocessing.get_all_start_methods()
     context = multiprocessing.get_context("fork" if "fork" in methods else None)
-    pool = ProcessPoolExecutor(max_workers=jobs, mp_context=context, initializer=_ignore_sigint)
+    return ProcessPoolExecutor(max_workers=jobs, mp_context=context, initializer=_ignore_sigint)
 
+
+def _pool_stream(
+    pool: ProcessPoolExecutor,
+    func: Callable[[T], R],
+    items: Sequence[T],
+    jobs: int,
+    on_done: Callable[[], None] | None,
+    on_error: Callable[[T, BaseException], R] | None,
+) -> Iterator[R]:
     def submit(chunk: Sequence[T]) -> Any:
         return pool.submit(_run_chunk, func, chunk)
 
     def first_done(running: set[Any]) -> set[Any]:
         return wait(running, return_when=FIRST_COMPLETED)[0]
 
+    def chunk_error(item: T, error: BaseException) -> R:
+        if isinstance(error, BrokenProcessPool) or on_error is None:
+            raise error  # pool_map isolates the item that broke the pool
+        return on_error(item, error)
+
+    return stream(
+        submit, first_done, items, 2 * jobs, CHUNK_SECONDS, on_done, chunk_error, MAX_CHUNK
+    )
+
+
+def _alone(func: Callable[[T], R], item: T, on_error: Callable[[T, BaseException], R]) -> R:
+    """``func(item)`` in a process of its own; ``on_error`` if it fails or kills it."""
+    pool = _new_pool(1)
     try:
-        yield from stream(
-            submit, first_done, items, 2 * jobs, CHUNK_SECONDS, on_done, on_error, MAX_CHUNK
-        )
-    except BaseException:
+        return pool.submit(_run_chunk, func, [item]).result()[0][0]
+    except Exception as error:
+        return on_error(item, error)
+    finally:
         _kill(pool)
-        raise
-    pool.shutdown(wait=True)
 
 
 def stream(
