@@ -168,6 +168,15 @@ def run_study_file(case: Any, options: RunOptions) -> Outcome:
     return outcome
 
 
+def lost_file(path: str, error: BaseException) -> Outcome:
+    """A file whose worker died under it (the system killed it) or was lost on a
+    cluster: an internal error of that file; the batch goes on."""
+    line = f"{path}: internal error: its worker process died ({type(error).__name__}: {error})"
+    outcome = Outcome(path, EXIT_BUG, messages=[line])
+    outcome.json = _error_json(path, "internal-error", [{"message": line}])
+    return outcome
+
+
 class FileRunner:
     """A picklable ``run_file`` with its options bound (for the pool)."""
 

@@ -374,7 +374,7 @@ def run_command(
         import time
         from collections import Counter
 
-        from mdcalc.batch import STATUS_OF_EXIT, FileRunner, RunOptions, worst_exit
+        from mdcalc.batch import STATUS_OF_EXIT, FileRunner, RunOptions, lost_file, worst_exit
         from mdcalc.cluster import executor, scheduler_of
         from mdcalc.pool import collect, default_jobs
         from mdcalc.terminal import print_run_summary
@@ -398,7 +398,7 @@ def run_command(
             start = time.perf_counter()
             flushed = start
             # Streamed: each result is written as soon as it and the ones before it are done.
-            outcomes = mapper(FileRunner(options), [str(f.path) for f in files])
+            outcomes = mapper(FileRunner(options), [str(f.path) for f in files], on_error=lost_file)
             for case, outcome in zip(files, outcomes, strict=True):
                 flushed = _write_outcome(case, outcome, out, as_json, text, flushed)
                 counts[outcome.status] += 1

@@ -348,7 +348,7 @@ def evaluate(
     status = np.zeros(sweep.points, dtype=int)
     messages: list[str] = []
     done = (lambda: on_done(1)) if on_done is not None else None
-    for index, (code, values, message) in enumerate(run(point_results, tasks, done)):
+    for index, (code, values, message) in enumerate(run(point_results, tasks, done, _lost_point)):
         status[index] = code
         if message:
             at = ", ".join(f"{k} = {grid[k][index]:g}" for k in keys)
@@ -357,6 +357,10 @@ def evaluate(
             if key in values:
                 columns[key][index] = values[key]
     return Table(keys + wanted, units, columns, status, messages)
+
+
+def _lost_point(task: Any, error: BaseException) -> tuple[int, dict[str, Any], str]:
+    return EXIT_BUG, {}, f"internal error: its worker process died ({type(error).__name__})"
 
 
 def _module(problem: str) -> Any:
