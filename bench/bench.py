@@ -114,14 +114,15 @@ def startup_against(other: Path) -> None:
     )
 
 
-def batch(folder: Path) -> None:
-    cases = folder / "cases"
+def braking_cases(folder: Path, count: int) -> Path:
+    """``count`` generated braking case files (seeded) in a new folder."""
+    cases = folder
     cases.mkdir()
     import random
 
     rng = random.Random(2026)
-    for i in range(1000):
-        (cases / f"case_{i:04d}.toml").write_text(
+    for i in range(count):
+        (cases / f"case_{i:06d}.toml").write_text(
             'problem = "braking"\n'
             f"[vehicle]\nmass = {rng.uniform(800, 3000):.1f}\n"
             f"initial_speed_kmh = {rng.uniform(30, 150):.1f}\n"
@@ -129,6 +130,11 @@ def batch(folder: Path) -> None:
             f"[driver]\nreaction_time = {rng.uniform(0.5, 1.5):.2f}\nbuild_up_time = 0.2\n",
             encoding="utf-8",
         )
+    return cases
+
+
+def batch(folder: Path) -> None:
+    cases = braking_cases(folder / "cases", 1000)
     best = min(wall([MDCALC, "run", str(cases), "--jobs", "2", "--json"]) for _ in range(3))
     rate = 1000 / best
     row(
@@ -160,6 +166,42 @@ def sweep(folder: Path) -> None:
     csv = folder / "sweep.csv"
     best = min(wall([MDCALC, "sweep", lecture, *grid, "--out", str(csv)]) for _ in range(3))
     row("mdcalc sweep: the same, --out sweep.csv (36 MB)", f"{best:.2f} s", "<= 2 s", best <= 2)
+
+
+def growth(folder: Path) -> None:
+    """The cost of growth: ``run`` over 10³, 10⁴, 10⁵ generated braking files and
+    ``sweep`` over 10³ … 10⁶ braking points (``--out .csv``), whole commands, with the
+    cost per item and the marginal cost between sizes (start-up excluded)."""
+    print("growth (whole command; per item; marginal per item from the size before):")
+    previous: tuple[int, float] | None = None
+    for count in (1_000, 10_000, 100_000):
+        cases = braking_cases(folder / f"growth_{count}", count)
+        seconds = wall([MDCALC, "run", str(cases), "--jobs", "2", "--json"])
+        _growth_row("run --jobs 2 --json", count, seconds, previous)
+        previous = (count, seconds)
+        shutil.rmtree(cases, ignore_errors=True)
+    lecture = str(ROOT / "cases" / "braking" / "lecture.toml")
+    previous = None
+    for side in (32, 100, 317, 1000):
+        count = side * side
+        grid = [
+            "--vary",
+            f"vehicle.mass=800:3000:{side}",
+            "--vary",
+            f"vehicle.initial_speed=5:50:{side}",
+        ]
+        csv = folder / "growth.csv"
+        seconds = wall([MDCALC, "sweep", lecture, *grid, "--out", str(csv)])
+        _growth_row("sweep --out .csv (braking)", count, seconds, previous)
+        previous = (count, seconds)
+
+
+def _growth_row(what: str, count: int, seconds: float, previous: tuple[int, float] | None) -> None:
+    per = seconds / count * 1e6
+    marginal = ""
+    if previous is not None:
+        marginal = f", marginal {(seconds - previous[1]) / (count - previous[0]) * 1e6:.1f} µs"
+    print(f"  {what:32s} {count:>9,} items  {seconds:7.2f} s  {per:8.1f} µs/item{marginal}")
 
 
 def timed(run: Callable[[], object], repeats: int = 5) -> float:
@@ -280,6 +322,7 @@ def main() -> None:
         sweep(folder)
         mine_hoist()
         studies(folder)
+        growth(folder)
         shutil.rmtree(folder / "cases", ignore_errors=True)
 
 
