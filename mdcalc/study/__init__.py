@@ -83,9 +83,7 @@ def run(
     study = plan(case)
     spec = study.spec
     module = PROBLEMS[study.problem].load()
-    from mdcalc.casefile import validate
-
-    nominal = validate(module.Case, CaseText(case.path, case.text, study.scene_data))
+    nominal = study.nominal
     asked = list(spec.results or [])
     if asked:
         asked += [k for k in spec.limits if k not in asked]

@@ -296,6 +296,7 @@ class Plan:
     scene_data: dict[str, Any]
     spec: StudySpec
     inputs: list[Input]
+    nominal: Any  # the scene validated, as written
     expect: dict[str, Any] = field(default_factory=dict)
 
     @property
@@ -315,7 +316,7 @@ def plan(case: CaseText) -> Plan:
     spec_problem = problem_of(case)
     module = spec_problem.load()
     scene_data = {k: v for k, v in case.data.items() if k not in ("study", "expect")}
-    validate(module.Case, CaseText(case.path, case.text, scene_data))  # the nominal scene
+    nominal = validate(module.Case, CaseText(case.path, case.text, scene_data))
     own: dict[str, Any] = {
         k: case.data[k] for k in ("problem", "title", "study", "expect") if k in case.data
     }
@@ -330,7 +331,7 @@ def plan(case: CaseText) -> Plan:
     if problems:
         raise InputError(case.path, problems)
     _median_scene_is_valid(module.Case, case, scene_data, inputs)
-    return Plan(case, spec_problem.name, scene_data, spec, inputs, dict(doc.expect or {}))
+    return Plan(case, spec_problem.name, scene_data, spec, inputs, nominal, dict(doc.expect or {}))
 
 
 def _median_scene_is_valid(
@@ -465,15 +466,28 @@ _PERCENT = re.compile(r"^\s*(?:±|\+/-|\+-)?\s*([0-9.]+(?:[eE][-+]?\d+)?)\s*%\s*
 
 def _tolerance(tol: Any, nominal: float | None, unit: str, fail: Any) -> float | None:
     """The half-width of a tolerance: "±10 %" of the nominal, or "±0.05" / "±2 mm" /
-    0.05 in the field's unit."""
+    0.05 in the field's unit; None (and ``fail`` told why) for anything else."""
     if nominal is None:
         return None
+    half = _half_width(tol, nominal, unit, fail)
+    if half is None:
+        return None
+    if not math.isfinite(half) or half > MAGNITUDE_LIMIT:
+        fail(f"tol = {tol!r}; a tolerance must be a finite size within ±{MAGNITUDE_LIMIT:g}")
+        return None
+    return half
+
+
+def _half_width(tol: Any, nominal: float, unit: str, fail: Any) -> float | None:
     if not isinstance(tol, str):
         return abs(float(tol))
     match = _PERCENT.match(tol)
     if match:
         return abs(nominal) * float(match.group(1)) / 100.0
     text = tol.strip().removeprefix("±").removeprefix("+/-").removeprefix("+-").strip()
+    if text.startswith("-"):
+        fail(f'tol = {tol!r}; a tolerance is a size: write "±5 %" or "±0.05"')
+        return None
     try:
         return abs(float(text))
     except ValueError:
