@@ -84,7 +84,7 @@ def run_file(path: str, options: RunOptions) -> Outcome:
     """Run one case file; never raises (a bug becomes an outcome with exit 70)."""
     from mdcalc import methods
     from mdcalc.casefile import read_case
-    from mdcalc.report import render_rich, to_json
+    from mdcalc.report import render_plain, render_rich, to_json
     from mdcalc.runner import run_text
 
     methods.MIN_TIMING_SECONDS = options.timing_budget
@@ -107,7 +107,8 @@ def run_file(path: str, options: RunOptions) -> Outcome:
         if options.json:
             outcome.json = to_json(report, indent=None)
         if options.text:
-            outcome.text = _rendered(lambda console: render_rich(report, console), options)
+            plain = None if options.color else render_plain(report, options.width)
+            outcome.text = plain or _rendered(lambda c: render_rich(report, c), options)
     except InputError as exc:
         outcome = Outcome(path, EXIT_INPUT, messages=[str(exc)])
         outcome.json = _error_json(

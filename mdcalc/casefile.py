@@ -45,12 +45,14 @@ class CaseText:
         self.path = path
         self.text = text
         self.data = data
-        self._lines = _key_lines(text)
+        self._lines: dict[tuple[str | int, ...], int] | None = None  # made when asked for
         #: Quantity strings converted by the last :func:`validate` of this case.
         self.conversions: list[Conversion] = []
 
     def line_of(self, loc: tuple[str | int, ...]) -> int | None:
         """Line of the key at ``loc``, or of its nearest enclosing table."""
+        if self._lines is None:  # only a message needs lines: most cases never ask
+            self._lines = _key_lines(self.text)
         for n in range(len(loc), 0, -1):
             line = self._lines.get(tuple(loc[:n]))
             if line is not None:

@@ -28,6 +28,7 @@ from mdcalc.errors import (
     Problem,
 )
 from mdcalc.problems import PROBLEMS, ProblemSpec
+from mdcalc.startup import no_plugin_discovery
 
 app = typer.Typer(
     name="mdcalc",
@@ -104,12 +105,16 @@ def _stderr(line: str) -> None:
     print(line, file=sys.stderr)
 
 
+#: The width of text written to a pipe or a file (a terminal's own width otherwise).
+PIPE_WIDTH = 140
+
+
 def _console(stderr: bool = False) -> Any:
     from rich.console import Console
 
     stream = sys.stderr if stderr else sys.stdout
     # A pipe gets plain text at a width that keeps the Methods table on one line.
-    return Console(file=stream, width=None if stream.isatty() else 140, highlight=False)
+    return Console(file=stream, width=None if stream.isatty() else PIPE_WIDTH, highlight=False)
 
 
 def _guard(body: Callable[[], int], debug: bool) -> int:
@@ -154,7 +159,7 @@ def run_problem(
     time_limit: float | None = DEFAULT_TIME_LIMIT,
 ) -> int:
     def body() -> int:
-        from mdcalc.report import render_rich, to_json
+        from mdcalc.report import to_json
 
         _check_outputs(case, plot, save, force)
         from mdcalc.casefile import read_case
@@ -166,7 +171,9 @@ def run_problem(
         if as_json:
             print(to_json(report))
         else:
-            render_rich(report, _console())
+            from mdcalc.terminal import print_report
+
+            print_report(report, PIPE_WIDTH, _console)
         if plot is not None and charts:
             from mdcalc.plot import render
 
@@ -656,4 +663,5 @@ def main() -> None:
     # pydantic looks for plugins through importlib.metadata when it builds the first
     # model (~25 ms of a 0.3 s run); mdcalc's models use none.
     os.environ.setdefault("PYDANTIC_DISABLE_PLUGINS", "__all__")
+    no_plugin_discovery()
     app()

@@ -39,7 +39,9 @@ class FieldError(ValueError):
 class CaseModel(BaseModel):
     """A section of a case file."""
 
-    model_config = ConfigDict(strict=True, allow_inf_nan=False, extra="forbid", frozen=True)
+    model_config = ConfigDict(
+        strict=True, allow_inf_nan=False, extra="forbid", frozen=True, defer_build=True
+    )
 
     @field_validator("*", mode="after")
     @classmethod

@@ -268,10 +268,35 @@ def to_json(report: Report, indent: int | None = 2) -> str:
         "notes": [{"level": n.level, "text": n.text} for n in report.notes],
         "budget": {"time_limit_s": report.time_limit, "cut": list(report.cut)},
     }
-    separators = (",", ":") if indent is None else None
-    return json.dumps(
-        document, indent=indent, separators=separators, ensure_ascii=False, allow_nan=False
-    )
+    return dumps(document, indent)
+
+
+def dumps(document: Any, indent: int | None = None) -> str:
+    """JSON text of ``document`` (one line, or indented by 2) with orjson: a batch's
+    encoding costs a tenth of the standard library's. Floats are written in their
+    shortest round-trip form (``0.00001``, where json writes ``1e-05``); NaN and inf are
+    stopped before (:func:`_json_value` on every value of a report); orjson would
+    write them as null."""
+    import orjson
+
+    if indent not in (None, 2):
+        return json.dumps(document, indent=indent, ensure_ascii=False, allow_nan=False)
+    try:
+        text = orjson.dumps(
+            document,
+            default=_plain_number,
+            option=orjson.OPT_INDENT_2 if indent == 2 else 0,
+        ).decode()
+    except orjson.JSONEncodeError as exc:
+        raise ValueError(str(exc)) from None
+    return text
+
+
+def _plain_number(value: Any) -> Any:
+    """numpy's float64 and other float subclasses, as json.dumps takes them."""
+    if isinstance(value, float):
+        return float(value)
+    raise TypeError(f"Object of type {type(value).__name__} is not JSON serializable")
 
 
 def saved_table(report: Report) -> dict[str, Any]:
@@ -388,3 +413,198 @@ def render_rich(report: Report, console: Any) -> None:
     if report.status != "ok":
         console.print()
         console.print(Text(f"no answer: {report.message}", style="bold red"))
+
+
+# ----------------------------------------------------------------------- plain text
+#
+# A report printed to a pipe or a file has no colour, so rich's work (its import and
+# layout: ~45 ms of a 0.3 s scene) buys nothing but the layout itself. render_plain
+# makes the very text rich prints for a report on a colourless console, for the
+# reports whose layout is simple: every table at its natural width within the
+# console, single-width characters, no markup- or emoji-like text. Anything else is
+# None, and the caller uses rich. tests/test_plain.py compares the two over every
+# shipped case and over made-up reports that reach each fallback.
+
+#: rich's HEAVY_HEAD box: top, header row, header rule, body row, bottom.
+_BOX_TOP, _BOX_HEAD, _BOX_RULE, _BOX_ROW, _BOX_BOTTOM = "┏━┳┓", "┃ ┃┃", "┡━╇┩", "│ ││", "└─┴┘"
+
+
+def _patterns() -> tuple[Any, Any, Any]:
+    import re
+
+    # Characters rich gives one cell (its own table; tests/test_plain.py checks each):
+    # printable Latin, Greek, Cyrillic, phonetic letters, punctuation, super- and
+    # subscripts, arrows, mathematical operators, box drawing and blocks.
+    narrow = (
+        "\x20-\x7e\xa1-\u02ff\u0370-\u0482\u048a-\u052f\u1d00-\u1dbf\u2010-\u2027"
+        "\u2030-\u205e\u2070-\u20cf\u20f1-\u22ff\u2500-\u25fc"
+    )
+    other = re.compile(f"[^{narrow}]")
+    markup = re.compile(r"(\\*)\[([a-z#/@][^[]*?)]")  # rich.markup.RE_TAGS
+    emoji = re.compile(r":\S*?:")  # what rich's emoji codes look like
+    return other, markup, emoji
+
+
+_OTHER, _MARKUP, _EMOJI = _patterns()
+
+
+def _narrow(text: str) -> bool:
+    """Every character of ``text`` takes one cell on a terminal (none is a control)."""
+    return _OTHER.search(text) is None
+
+
+def _literal(text: str) -> bool:
+    """rich prints a string cell or title as it is: narrow, no markup, no emoji code."""
+    return _narrow(text) and not _MARKUP.search(text) and not _EMOJI.search(text)
+
+
+def _wrap(text: str, width: int) -> list[str] | None:
+    """rich's word wrap (rich._wrap.divide_line, then rstrip_end) of one line of
+    narrow text; None where a word is longer than the line (rich folds it)."""
+    import re
+
+    breaks: list[int] = []
+    offset = 0
+    for match in re.finditer(r"\s*\S+\s*", text):
+        start, word = match.start(), match.group(0)
+        length = len(word.rstrip())
+        if width - offset >= length:
+            offset += len(word)
+        elif length > width:
+            return None
+        elif offset and start:
+            breaks.append(start)
+            offset = len(word)
+    lines = [text[a:b] for a, b in zip([0, *breaks], [*breaks, len(text)], strict=True)]
+    out = []
+    for line in lines:
+        if len(line) > width:  # rich crops trailing blanks beyond the width
+            blanks = len(line) - len(line.rstrip())
+            line = line[: len(line) - min(blanks, len(line) - width)]
+        out.append(line)
+    return out
+
+
+def _plain_table(
+    title: str,
+    header: list[str] | None,
+    rows: list[list[str]],
+    right: list[bool],
+    boxed: bool,
+    width: int,
+) -> list[str] | None:
+    """A rich Table (padding 1, edges padded) at its natural width, as lines."""
+    cells = [header, *rows] if header is not None else rows
+    if not rows or any(len(row) != len(right) for row in cells if row is not None):
+        return None
+    for row in cells:
+        for cell, r in zip(row or (), right, strict=True):
+            # rich right-justifies a cell stripped of trailing blanks
+            if cell != cell.rstrip() or (r and cell != cell.strip()) or not _literal(cell):
+                return None
+    widths = [max(len(row[i]) for row in cells if row is not None) for i in range(len(right))]
+    total = sum(widths) + 2 * len(widths) + (len(widths) + 1 if boxed else 0)
+    if total > width or not _literal(title):
+        return None
+
+    def line(row: list[str], edge: str) -> str:
+        parts = [
+            " " + (cell.rjust(w) if r else cell.ljust(w)) + " "
+            for cell, w, r in zip(row, widths, right, strict=True)
+        ]
+        return edge[0] + edge[2].join(parts) + edge[3] if boxed else "".join(parts)
+
+    def rule(edge: str) -> str:
+        return edge[0] + edge[2].join(edge[1] * (w + 2) for w in widths) + edge[3]
+
+    title_lines = _wrap(title, total) if title else []
+    if title_lines is None:
+        return None
+    out = [t.ljust(total) for t in title_lines]
+    if boxed:
+        out.append(rule(_BOX_TOP))
+    if header is not None:
+        out.append(line(header, _BOX_HEAD))
+        if boxed:
+            out.append(rule(_BOX_RULE))
+    out.extend(line(row, _BOX_ROW) for row in rows)
+    if boxed:
+        out.append(rule(_BOX_BOTTOM))
+    return out
+
+
+@singledispatch
+def section_plain(section: Any, width: int) -> list[str] | None:
+    return None
+
+
+@section_plain.register
+def _(section: Quantities, width: int) -> list[str] | None:
+    rows = [[q.label, format_value(q.value), q.unit, q.note] for q in section.items]
+    return _plain_table(section.title, None, rows, [False, True, False, False], False, width)
+
+
+@section_plain.register
+def _(section: Table, width: int) -> list[str] | None:
+    first = section.rows[0] if section.rows else []
+    right = [
+        not (i < len(first) and isinstance(first[i], str)) for i in range(len(section.columns))
+    ]
+    header = [f"{c.label} ({c.unit})" if c.unit else c.label for c in section.columns]
+    rows = [[format_value(v) for v in row] for row in section.rows]
+    return _plain_table(section.title, header, rows, right, True, width)
+
+
+@section_plain.register
+def _(section: MethodsTable, width: int) -> list[str] | None:
+    header, right = ["method"], [False]
+    for q in section.quantities:
+        header += [f"{q.label} ({q.unit})" if q.unit else q.label, "rel. error"]
+        right += [True, True]
+    header += ["run time", "note"]
+    right += [True, False]
+    rows = []
+    for row in section.rows:
+        cells = [row.method]
+        for q in section.quantities:
+            cells.append(format_value(row.values.get(q.key)))
+            cells.append("reference" if row.reference else format_error(row.rel_errors.get(q.key)))
+        cells += [format_seconds(row.seconds), row.note]
+        rows.append(cells)
+    return _plain_table(section.title, header, rows, right, True, width)
+
+
+def render_plain(report: Report, width: int) -> str | None:
+    """The text :func:`render_rich` prints on a colourless console ``width`` wide, or
+    None where only rich can lay the report out (see above)."""
+    out: list[str] = []
+
+    def text(line: str) -> bool:
+        if not _narrow(line):  # a rich Text: no markup, no emoji codes
+            return False
+        wrapped = _wrap(line, width)
+        if wrapped is None:
+            return False
+        out.extend(wrapped)
+        return True
+
+    if not text(report.title):
+        return None
+    if report.case and not text(f"{report.problem} · {report.case}"):
+        return None
+    for section in report.sections:
+        lines = section_plain(section, width)
+        if lines is None:
+            return None
+        out.append("")
+        out.extend(lines)
+    if report.notes:
+        out.append("")
+        for note in report.notes:
+            if not text(f"{note.level}: {note.text}"):
+                return None
+    if report.status != "ok":
+        out.append("")
+        if not text(f"no answer: {report.message}"):
+            return None
+    return "\n".join(out) + "\n"

@@ -15,6 +15,27 @@ def stdout_console(stderr: bool = False) -> Any:
     return Console(file=stream, width=None if stream.isatty() else 140, highlight=False)
 
 
+def plain_stdout() -> bool:
+    """stdout takes text without colour: not a terminal, and no variable asks rich
+    for a terminal's codes anyway."""
+    import os
+
+    forced = ("FORCE_COLOR", "TTY_COMPATIBLE", "TTY_INTERACTIVE")
+    return not sys.stdout.isatty() and not any(os.environ.get(name) for name in forced)
+
+
+def print_report(report: Any, width: int, console: Any) -> None:
+    """A report on stdout: the plain-text layout where it gives rich's very text
+    (a pipe, most reports), else rich."""
+    from mdcalc.report import render_plain, render_rich
+
+    text = render_plain(report, width) if plain_stdout() else None
+    if text is None:
+        render_rich(report, console())
+    else:
+        sys.stdout.write(text)
+
+
 def print_run_summary(
     counts: Any, failed: list[tuple[str, str]], files: int, seconds: float, how: str, stderr: bool
 ) -> None:

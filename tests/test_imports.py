@@ -17,7 +17,7 @@ try:
     main()
 except SystemExit:
     pass
-heavy = sorted({{m.split(".")[0] for m in sys.modules}} & {{"scipy", "matplotlib", "pint"}})
+heavy = sorted(set(sys.modules) & {{"scipy", "matplotlib", "pint"}})
 print("HEAVY", heavy, file=sys.stderr)
 """
 
@@ -211,3 +211,28 @@ def test_quantity_strings_load_pint_and_plain_numbers_do_not():
     units = heavy_modules("coupling", str(CASES / "coupling" / "example_8_1_units.toml"))
     assert "pint" not in plain
     assert "pint" in units
+
+
+def test_a_scene_skips_pydantic_plugin_discovery_but_not_the_loader():
+    # importlib.metadata (17 ms) is what pydantic's plugin loader imports; with
+    # PYDANTIC_DISABLE_PLUGINS the stand-in answers "no plugins" and forwards the rest.
+    probe = PROBE.replace('{{"scipy", "matplotlib", "pint"}}', '{{"importlib.metadata"}}')
+    done = subprocess.run(
+        [sys.executable, "-c", probe.format(args=["braking", str(CASES / "braking/lecture.toml")])],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
+    assert done.stderr.strip().splitlines()[-1] == "HEAVY []"
+    forwarded = (
+        "import sys\n"
+        "from mdcalc.startup import no_plugin_discovery\n"
+        "import os; os.environ['PYDANTIC_DISABLE_PLUGINS'] = '__all__'\n"
+        "no_plugin_discovery()\n"
+        "from pydantic.plugin._loader import get_plugins, PYDANTIC_ENTRY_POINT_GROUP\n"
+        "from pydantic import BaseModel\n"
+        "class A(BaseModel):\n    x: float\n"
+        "print(list(get_plugins()), PYDANTIC_ENTRY_POINT_GROUP, A(x=1).x)\n"
+    )
+    done = subprocess.run([sys.executable, "-c", forwarded], capture_output=True, text=True)
+    assert done.stdout.split() == ["[]", "pydantic", "1.0"], done.stderr

@@ -24,14 +24,23 @@ from contextlib import contextmanager
 from dataclasses import dataclass, field
 from typing import Any
 
+try:  # signal's own functions without the enum wrappers (7 µs a call with a handler set)
+    from _signal import getsignal as _getsignal
+    from _signal import signal as _setsignal
+except ImportError:  # pragma: no cover - another Python implementation
+    _getsignal, _setsignal = signal.getsignal, signal.signal
+
 #: The default time limit of one case (one sweep point) [s].
 DEFAULT_SECONDS = 60.0
 #: A method may spend this fraction of the time left; the rest stays for the methods
 #: after it and for the report.
 METHOD_SHARE = 0.8
-#: The alarm fires this long after a deadline, giving the cooperative checks (which
-#: stop cleanly) the first chance [s].
+#: The alarm stops a loop this long after a deadline, giving the cooperative checks
+#: (which stop cleanly) the first chance [s].
 GRACE = 0.05
+#: While a limited case runs, SIGALRM ticks this often and looks at the innermost
+#: deadline: one timer a case, none per method (a share costs no system call) [s].
+TICK = 0.025
 
 
 class OverBudget(Exception):
@@ -88,10 +97,14 @@ def limit(seconds: float | None) -> Iterator[Budget]:
     outer = current()
     saved = _save_alarm()
     _local.budget = budget
+    budget.deadlines.append(budget.start + budget.seconds)
+    if math.isfinite(budget.deadline) and saved is not None:
+        _setsignal(signal.SIGALRM, _alarm)
+        signal.setitimer(signal.ITIMER_REAL, TICK, TICK)
     try:
-        with _deadline(budget, budget.start + budget.seconds):
-            yield budget
+        yield budget
     finally:
+        budget.deadlines.pop()
         _local.budget = outer
         _restore_alarm(saved)
 
@@ -99,75 +112,53 @@ def limit(seconds: float | None) -> Iterator[Budget]:
 @contextmanager
 def share(fraction: float = METHOD_SHARE) -> Iterator[float]:
     """A deadline for one part of the work: ``fraction`` of the time left. Yields
-    the seconds granted (inf without a budget)."""
+    the seconds granted (inf without a budget). No system call: the alarm that ticks
+    through a limited case looks at whichever deadline is innermost."""
     budget = current()
     if budget is None or not budget.deadlines:
         yield math.inf
         return
     now = time.perf_counter()
     granted = max(0.0, budget.deadline - now) * fraction
-    with _deadline(budget, now + granted):
-        yield granted
-
-
-@contextmanager
-def _deadline(budget: Budget, deadline: float) -> Iterator[None]:
-    deadline = min(deadline, budget.deadline)
-    budget.deadlines.append(deadline)
-    armed = _arm(deadline)
+    budget.deadlines.append(min(now + granted, budget.deadline))
     try:
-        yield
+        yield granted
     finally:
         budget.deadlines.pop()
-        if armed:
-            _arm(budget.deadline) if budget.deadlines else _disarm()
 
 
 def _alarm(signum: int, frame: Any) -> None:
+    """SIGALRM, every TICK seconds of a limited case: stop a loop that does not check
+    once the innermost deadline is GRACE behind it."""
     budget = current()
     if budget is None or not budget.deadlines:
         return  # stale: the limit it was set for has ended
-    if budget.remaining() > 0:  # stale: its share has ended; re-arm for the one in force
-        _arm(budget.deadline)
-        return
-    raise OverBudget
+    if time.perf_counter() > budget.deadline + GRACE:
+        raise OverBudget
 
 
-def _arm(deadline: float) -> bool:
-    """Set SIGALRM for ``deadline`` (+ GRACE); False where alarms are not available."""
-    if not math.isfinite(deadline) or not _alarms_work():
-        return False
-    if signal.getsignal(signal.SIGALRM) is not _alarm:
-        signal.signal(signal.SIGALRM, _alarm)
-    signal.setitimer(signal.ITIMER_REAL, max(deadline - time.perf_counter(), 0.0) + GRACE)
-    return True
-
-
-def _disarm() -> None:
-    if _alarms_work():
-        signal.setitimer(signal.ITIMER_REAL, 0.0)
-
-
-def _save_alarm() -> tuple[Any, float, float] | None:
-    """Whoever had SIGALRM before (a test's own watchdog, say): handler, time left, when."""
+def _save_alarm() -> tuple[Any, tuple[float, float], float] | None:
+    """Whoever had SIGALRM before (a test's own watchdog, an outer limit): handler,
+    timer (time left, interval), when; None where alarms are not available."""
     if not _alarms_work():
         return None
-    return (
-        signal.getsignal(signal.SIGALRM),
-        signal.getitimer(signal.ITIMER_REAL)[0],
-        time.perf_counter(),
-    )
+    return (_getsignal(signal.SIGALRM), signal.getitimer(signal.ITIMER_REAL), time.perf_counter())
 
 
-def _restore_alarm(saved: tuple[Any, float, float] | None) -> None:
+def _restore_alarm(saved: tuple[Any, tuple[float, float], float] | None) -> None:
     if saved is None:
         return
-    handler, left, when = saved
+    handler, (left, interval), when = saved
     signal.setitimer(signal.ITIMER_REAL, 0.0)
-    signal.signal(signal.SIGALRM, handler)
+    _setsignal(signal.SIGALRM, handler)
     if left > 0.0:  # an alarm that fell due meanwhile fires now
-        signal.setitimer(signal.ITIMER_REAL, max(left - (time.perf_counter() - when), 1e-6))
+        signal.setitimer(
+            signal.ITIMER_REAL, max(left - (time.perf_counter() - when), 1e-6), interval
+        )
+
+
+_HAVE_ALARMS = hasattr(signal, "setitimer")
 
 
 def _alarms_work() -> bool:
-    return hasattr(signal, "setitimer") and threading.current_thread() is threading.main_thread()
+    return _HAVE_ALARMS and threading.current_thread() is threading.main_thread()
