@@ -62,9 +62,9 @@ class RunOptions:
     color: bool
     width: int
     #: Cheap methods are repeated for this long to time them (``methods.timed``);
-    #: a batch takes 50 µs, not the 2 ms of a single run: coarser microsecond
-    #: figures, ten times the files per second.
-    timing_budget: float = 5e-5
+    #: a batch takes 20 µs, not the 2 ms of a single run: a mean over some tens of
+    #: calls of a microsecond method, not the hundreds of a single run.
+    timing_budget: float = 2e-5
     #: Each file's time limit [s] (None: none).
     time_limit: float | None = 60.0
 

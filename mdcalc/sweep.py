@@ -372,46 +372,45 @@ def _module(problem: str) -> Any:
 # ------------------------------------------------------------------------- output
 
 
-def _formatted(column: Any) -> list[str]:
-    """Each value with 12 significant digits; "" for a missing (NaN) value."""
-    import numpy as np
-
-    text = [f"{v:.12g}" for v in column.tolist()]
-    if np.isnan(column).any():
-        text = ["" if t == "nan" else t for t in text]
-    return text
-
-
 def to_csv(table: Table) -> str:
-    """CSV with a header of ``key [unit]`` and a ``status`` column (0, 2, 3, 70)."""
+    """CSV with a header of ``key [unit]`` and a ``status`` column (0, 2, 3, 70).
+
+    Each number is the shortest text that reads back as the same float, a whole
+    number without ".0" (orjson's formatting, in C: a million rows in a fraction of a
+    second where Python's took seconds); a missing value (NaN) is an empty field."""
     import numpy as np
+    import orjson
 
     header = [f"{k} [{table.units[k]}]" if table.units.get(k) else k for k in table.keys]
-    formatted = []
-    for key in table.keys:
-        column = np.asarray(table.columns[key], dtype=float)
-        values, inverse = np.unique(column, return_inverse=True)
-        if len(values) <= len(column) // 4:
-            # A grid column takes few distinct values: format each once.
-            strings = np.array(_formatted(values), dtype=object)
-            formatted.append(strings[inverse.ravel()].tolist())
-        else:
-            formatted.append(_formatted(column))
+    head = ",".join([*header, "status"]) + "\n"
+    if len(table.status) == 0:
+        return head
+    matrix = np.column_stack([np.asarray(table.columns[k], dtype=float) for k in table.keys])
+    text = orjson.dumps(matrix, option=orjson.OPT_SERIALIZE_NUMPY)
+    with np.errstate(invalid="ignore"):
+        whole = (np.mod(matrix, 1.0) == 0.0).all(axis=0)
+    if whole.any():  # a count (pairs.driven = 2) without ".0"; each pass reads the text
+        text = text.replace(b".0,", b",").replace(b".0]", b"]")
+    if np.isnan(matrix).any():  # orjson writes NaN as null: an empty field
+        text = text.replace(b"null", b"")
+    rows = text[2:-2]  # [[a,b],[c,d]] -> a,b],[c,d
     if not table.status.any():
-        formatted.append(["0"] * len(table.status))
+        body = rows.replace(b"],[", b",0\n") + b",0\n"
     else:
-        formatted.append([str(s) for s in table.status.tolist()])
-    body = "\n".join(map(",".join, zip(*formatted, strict=True)))
-    return ",".join([*header, "status"]) + "\n" + body + "\n"
+        body = b"".join(
+            b"%s,%d\n" % pair
+            for pair in zip(rows.split(b"],["), table.status.tolist(), strict=True)
+        )
+    return head + body.decode()
 
 
 def to_json(table: Table, sweep: Plan) -> str:
-    import json
+    """The sweep as one JSON document (``values``: a list per key, null where a point
+    has no value), written by orjson straight from the numpy columns."""
+    import numpy as np
+    import orjson
 
     from mdcalc import __version__
-
-    def clean(values: Any) -> list[Any]:
-        return [None if math.isnan(v) else v for v in values.tolist()]
 
     document = {
         "mdcalc": __version__,
@@ -423,10 +422,10 @@ def to_json(table: Table, sweep: Plan) -> str:
         ],
         "vectorized": table.vectorized,
         "columns": [{"key": k, "unit": table.units.get(k, "")} for k in table.keys],
-        "values": {k: clean(table.columns[k]) for k in table.keys},
-        "status": table.status.tolist(),
+        "values": {k: np.asarray(table.columns[k], dtype=float) for k in table.keys},
+        "status": np.asarray(table.status, dtype=np.int64),
     }
-    return json.dumps(document, ensure_ascii=False, allow_nan=False)
+    return orjson.dumps(document, option=orjson.OPT_SERIALIZE_NUMPY).decode()
 
 
 def summary_rows(table: Table) -> list[tuple[str, str, str, str]]:
