@@ -23,7 +23,6 @@ JSON layout (``format`` 1, stable; documented in the README)::
 
 from __future__ import annotations
 
-import json
 import math
 from dataclasses import dataclass, field
 from functools import singledispatch
@@ -272,20 +271,18 @@ def to_json(report: Report, indent: int | None = 2) -> str:
 
 
 def dumps(document: Any, indent: int | None = None) -> str:
-    """JSON text of ``document`` (one line, or indented by 2) with orjson: a batch's
-    encoding costs a tenth of the standard library's. Floats are written in their
+    """JSON text of ``document`` (``indent`` None: one line; else indented by 2) with
+    orjson: a batch's encoding costs a tenth of the standard library's. Floats are written in their
     shortest round-trip form (``0.00001``, where json writes ``1e-05``); NaN and inf are
     stopped before (:func:`_json_value` on every value of a report); orjson would
     write them as null."""
     import orjson
 
-    if indent not in (None, 2):
-        return json.dumps(document, indent=indent, ensure_ascii=False, allow_nan=False)
     try:
         text = orjson.dumps(
             document,
             default=_plain_number,
-            option=orjson.OPT_INDENT_2 if indent == 2 else 0,
+            option=0 if indent is None else orjson.OPT_INDENT_2,
         ).decode()
     except orjson.JSONEncodeError as exc:
         raise ValueError(str(exc)) from None

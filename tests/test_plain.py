@@ -180,8 +180,8 @@ def test_piped_command_prints_riches_text_without_importing_rich():
         f"sys.argv = ['mdcalc', 'braking', {str(lecture)!r}]\n"
         "from mdcalc.cli import main\n"
         "try:\n    main()\nexcept SystemExit:\n    pass\n"
-        "print(sorted(m for m in sys.modules if m.split('.')[0] in ('rich', 'importlib')"
-        " and m.startswith(('rich', 'importlib.metadata'))), file=sys.stderr)\n"
+        "print(sorted(m for m in sys.modules if m == 'rich'"
+        " or m.startswith(('rich.', 'importlib.metadata'))), file=sys.stderr)\n"
     )
     import subprocess
 
