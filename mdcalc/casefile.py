@@ -212,9 +212,10 @@ def write_toml_atomic(path: Path, data: dict[str, Any], force: bool = False) -> 
     write_atomic(path, tomli_w.dumps(data), replace=force)
 
 
-def write_text_atomic(path: Path, text: str) -> None:
-    """Write ``text`` to ``path`` atomically, replacing a regular file that is there
-    (the results of ``run --out`` and ``sweep --out``, written again on each run)."""
+def write_text_atomic(path: Path, text: str | bytes | bytearray) -> None:
+    """Write ``text`` (str, or bytes already UTF-8) to ``path`` atomically, replacing
+    a regular file that is there (the results of ``run --out`` and ``sweep --out``,
+    written again on each run)."""
     write_atomic(path, text, replace=True)
 
 

@@ -4,13 +4,15 @@ Exit codes: 0 computed, 1 ``check`` mismatch, 2 bad input, 3 valid input without
 answer, 70 a bug (one line; the traceback only with ``--debug``), 130 Ctrl-C. Messages go to
 stderr as ``file:line: error: path: message``; results to stdout. JSON is written
 with plain ``print``: a rich Console wraps long lines when piped and breaks it.
+
+The console script is :func:`mdcalc.launch.main`: a plain problem run skips this
+module; the command bodies both use are in :mod:`mdcalc.command`.
 """
 
 # No `from __future__ import annotations` here: typer would eval every string
 # annotation of every command at start-up (~260 evals, 10 ms of `--help`).
 
 import sys
-import traceback
 from collections.abc import Callable
 from pathlib import Path
 from typing import Annotated, Any
@@ -18,17 +20,24 @@ from typing import Annotated, Any
 import typer
 
 from mdcalc import __version__
+from mdcalc.command import (
+    DEFAULT_TIME_LIMIT,
+    check_outputs,
+    guard,
+    limit_of,
+    make_console,
+    print_error,
+    run_problem,
+)
 from mdcalc.errors import (
-    EXIT_BUG,
     EXIT_INPUT,
-    EXIT_INTERRUPTED,
     EXIT_MISMATCH,
     EXIT_NO_ANSWER,
     InputError,
     Problem,
 )
 from mdcalc.problems import PROBLEMS, ProblemSpec
-from mdcalc.startup import no_plugin_discovery
+from mdcalc.startup import prepare
 
 app = typer.Typer(
     name="mdcalc",
@@ -44,8 +53,6 @@ app = typer.Typer(
 
 JsonOption = Annotated[bool, typer.Option("--json", help="Write the results as JSON.")]
 DebugOption = Annotated[bool, typer.Option("--debug", help="Show the traceback of a bug.")]
-#: mdcalc.core.budget.DEFAULT_SECONDS (not imported here: the CLI loads it only to run).
-DEFAULT_TIME_LIMIT = 60.0
 TimeLimitOption = Annotated[
     float,
     typer.Option(
@@ -67,10 +74,6 @@ SchedulerOption = Annotated[
         "processes here (needs mdcalc[dask]). Default: $MDCALC_SCHEDULER, else the process pool.",
     ),
 ]
-
-
-def _limit(seconds: float) -> float | None:
-    return seconds if seconds > 0 else None
 
 
 def complete_case(incomplete: str) -> list[str]:
@@ -99,145 +102,6 @@ def complete_case(incomplete: str) -> list[str]:
 
 def complete_problem(incomplete: str) -> list[str]:
     return [name for name in PROBLEMS if name.startswith(incomplete)]
-
-
-def _stderr(line: str) -> None:
-    print(line, file=sys.stderr)
-
-
-#: The width of text written to a pipe or a file (a terminal's own width otherwise).
-PIPE_WIDTH = 140
-
-
-def _console(stderr: bool = False) -> Any:
-    from rich.console import Console
-
-    stream = sys.stderr if stderr else sys.stdout
-    # A pipe gets plain text at a width that keeps the Methods table on one line.
-    return Console(file=stream, width=None if stream.isatty() else PIPE_WIDTH, highlight=False)
-
-
-def _guard(body: Callable[[], int], debug: bool) -> int:
-    """Run a command body; map errors to the exit codes of the contract."""
-    try:
-        return body()
-    except InputError as exc:
-        _stderr(str(exc))
-        return EXIT_INPUT
-    except KeyboardInterrupt:
-        import signal
-
-        signal.signal(signal.SIGINT, signal.SIG_DFL)  # a second Ctrl-C ends at once
-        _stderr("mdcalc: interrupted")
-        return EXIT_INTERRUPTED
-    except BrokenPipeError:
-        # The reader went away (`mdcalc ... | head`): not a bug. Point stdout at
-        # devnull so the interpreter's final flush does not complain again.
-        import os
-
-        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
-        return 141
-    except Exception as exc:
-        if debug:
-            traceback.print_exc()
-        _stderr(
-            f"mdcalc: internal error: {type(exc).__name__}: {exc} -- this is a bug in "
-            f"mdcalc {__version__}; please report it with the case file"
-            + ("" if debug else " (--debug shows the traceback)")
-        )
-        return EXIT_BUG
-
-
-def run_problem(
-    spec: ProblemSpec,
-    case: Path,
-    as_json: bool,
-    debug: bool,
-    plot: Path | None = None,
-    save: Path | None = None,
-    force: bool = False,
-    time_limit: float | None = DEFAULT_TIME_LIMIT,
-) -> int:
-    def body() -> int:
-        from mdcalc.report import to_json
-
-        _check_outputs(case, plot, save, force)
-        from mdcalc.casefile import read_case
-        from mdcalc.runner import solve_text
-
-        run = solve_text(read_case(case), expected_problem=spec.name, time_limit=time_limit)
-        report = run.report
-        charts = _charts(run, plot) if plot is not None else []
-        if as_json:
-            print(to_json(report))
-        else:
-            from mdcalc.terminal import print_report
-
-            print_report(report, PIPE_WIDTH, _console)
-        if plot is not None and charts:
-            from mdcalc.plot import render
-
-            render(charts, plot, title=report.title, replace=force)
-            _stderr(f"wrote {plot}")
-        if save is not None:
-            _save(run, save, force)
-            _stderr(f"wrote {save}")
-        if report.status != "ok":
-            _stderr(f"{case}: error: no answer: {report.message}")
-            return EXIT_NO_ANSWER
-        return 0
-
-    return _guard(body, debug)
-
-
-def _check_outputs(case: Path, plot: Path | None, save: Path | None, force: bool) -> None:
-    """Refuse --plot and --save paths before anything is computed."""
-    problems: list[tuple[Path, str]] = []
-    for option, path, suffixes in (("--plot", plot, None), ("--save", save, (".toml",))):
-        if path is None:
-            continue
-        if suffixes is None:
-            from mdcalc.plot import FORMATS, matplotlib_missing
-
-            if path.suffix.lower() not in FORMATS:
-                problems.append((path, f"{option}: use a file ending {', '.join(FORMATS)}"))
-            elif (missing := matplotlib_missing()) is not None:
-                problems.append((path, missing))
-        elif path.suffix.lower() not in suffixes:
-            problems.append((path, f"{option}: use a file ending .toml"))
-        try:
-            path.exists()
-        except OSError as exc:  # a name too long, say
-            problems.append((path, f"{option}: cannot use this path: {exc.strerror}"))
-            continue
-        if path.is_dir():
-            problems.append((path, f"{option}: is a folder; give a file name"))
-        elif path.exists() and not force:
-            problems.append((path, f"{option}: the file exists; use --force to overwrite it"))
-        elif path.resolve() == case.resolve():
-            problems.append((path, f"{option}: would overwrite the case file itself"))
-    if problems:  # the first file's problems (an error names one file)
-        first = problems[0][0]
-        raise InputError(first, [Problem(m) for path, m in problems if path == first])
-
-
-def _charts(run: Any, plot: Path) -> list[Any]:
-    make = getattr(run.module, "charts", None)
-    charts = make(run.result) if make is not None and run.result is not None else []
-    if not charts:
-        why = "this problem draws no plot" if make is None else "this scene has no curve to draw"
-        _stderr(f"{plot}: warning: --plot: {why}; no file written")
-    return list(charts)
-
-
-def _save(run: Any, path: Path, force: bool) -> None:
-    """The case as read, with the results in a [saved] table (tomli-w, atomic)."""
-    from mdcalc.casefile import write_toml_atomic
-    from mdcalc.report import saved_table
-
-    data = {k: v for k, v in run.case.data.items() if k != "saved"}
-    data["saved"] = {**saved_table(run.report), "case": str(run.case.path)}
-    write_toml_atomic(path, data, force=force)
 
 
 PlotOption = Annotated[
@@ -281,7 +145,7 @@ def _make_problem_command(spec: ProblemSpec) -> Callable[..., None]:
         debug: DebugOption = False,
     ) -> None:
         raise typer.Exit(
-            run_problem(spec, case, as_json, debug, plot, save, force, _limit(time_limit))
+            run_problem(spec, case, as_json, debug, plot, save, force, limit_of(time_limit))
         )
 
     command.__doc__ = spec.summary
@@ -326,18 +190,18 @@ def check_command(
         from mdcalc.pool import default_jobs
 
         workers = jobs or default_jobs(len(collect(paths)))
-        outcome = check_paths(paths, workers, _limit(time_limit))
+        outcome = check_paths(paths, workers, limit_of(time_limit))
         table = Table(title="mdcalc check", title_justify="left")
         for column in ("file", "result", "expected", "got", "tolerance", ""):
             table.add_column(column, overflow="fold")
         for row in outcome.rows:
             mark = "[green]pass[/green]" if row.passed else "[bold red]FAIL[/bold red]"
             table.add_row(row.file, row.key, row.expected, row.got, row.tolerance, mark)
-        console = _console()
+        console = make_console()
         if outcome.rows:
             console.print(table)
         for message in outcome.input_errors + outcome.internal_errors:
-            _stderr(message)
+            print_error(message)
         print(
             f"{outcome.files_checked} case files checked, {outcome.files_skipped} without "
             f"[expect], {len(outcome.input_errors)} unreadable"
@@ -347,7 +211,7 @@ def check_command(
             return EXIT_INPUT
         return EXIT_MISMATCH if outcome.failed else 0
 
-    raise typer.Exit(_guard(body, debug))
+    raise typer.Exit(guard(body, debug))
 
 
 @app.command("run")
@@ -397,7 +261,7 @@ def run_command(
             text=text,
             color=_color(),
             width=width,
-            time_limit=_limit(time_limit),
+            time_limit=limit_of(time_limit),
         )
         counts: Counter[str] = Counter()
         failed: list[tuple[str, str]] = []
@@ -416,7 +280,7 @@ def run_command(
         print_run_summary(counts, failed, len(files), seconds, how, stderr=as_json)
         return worst_exit(code for code, status in STATUS_OF_EXIT.items() if counts[status])
 
-    raise typer.Exit(_guard(body, debug))
+    raise typer.Exit(guard(body, debug))
 
 
 def _write_outcome(
@@ -438,7 +302,7 @@ def _write_outcome(
         sys.stdout.flush()
         flushed = now
     for message in outcome.messages:
-        _stderr(message)
+        print_error(message)
     return flushed
 
 
@@ -484,23 +348,23 @@ def sweep_command(
             executor(scheduler_of(scheduler), workers) as mapper,
             progress(sweep.points) as advance,
         ):
-            table = evaluate(sweep, result or [], workers, advance, _limit(time_limit), mapper)
+            table = evaluate(sweep, result or [], workers, advance, limit_of(time_limit), mapper)
         for message in table.messages[:20]:
-            _stderr(message)
+            print_error(message)
         if len(table.messages) > 20:
-            _stderr(f"{case}: error: ... and {len(table.messages) - 20} more points")
+            print_error(f"{case}: error: ... and {len(table.messages) - 20} more points")
         how = "vectorized" if table.vectorized else "point by point"
         if out is not None:
             from mdcalc.casefile import write_text_atomic
 
             text = to_csv(table) if out.suffix.lower() == ".csv" else to_json(table, sweep)
             write_text_atomic(out, text)
-            _stderr(f"wrote {out}: {sweep.points} points, {how}")
+            print_error(f"wrote {out}: {sweep.points} points, {how}")
         else:
             print_sweep(table, sweep.points, how)
         return table.exit_code
 
-    raise typer.Exit(_guard(body, debug))
+    raise typer.Exit(guard(body, debug))
 
 
 @app.command("study")
@@ -554,7 +418,7 @@ def study_command(
         from mdcalc.study.output import charts, check_out_path, render_rich, to_json, write_samples
         from mdcalc.terminal import progress
 
-        _check_outputs(case, plot, None, force)
+        check_outputs(case, plot, None, force)
         check_out_path(case, out, force)
         study_case = read_case(case)
         if "study" not in study_case.data:
@@ -572,17 +436,17 @@ def study_command(
                 result = run_study(
                     study_case,
                     mapper,
-                    _limit(time_limit),
+                    limit_of(time_limit),
                     advance,
                     getattr(advance, "total", None),
                 )
         if as_json:
             print(to_json(result))
         else:
-            render_rich(result, _console())
+            render_rich(result, make_console())
         if out is not None:
             write_samples(result, out, force)
-            _stderr(f"wrote {out}: {len(result.samples):,} samples")
+            print_error(f"wrote {out}: {len(result.samples):,} samples")
         answered = any(s is not None for s in result.stats.values())
         if plot is not None and answered:
             from mdcalc.plot import render
@@ -593,13 +457,13 @@ def study_command(
                 title=f"Study: {study_case.data.get('title') or result.plan.problem}",
                 replace=force,
             )
-            _stderr(f"wrote {plot}")
+            print_error(f"wrote {plot}")
         if not answered:
-            _stderr(f"{case}: error: no answer: no sample gave a value")
+            print_error(f"{case}: error: no answer: no sample gave a value")
             return EXIT_NO_ANSWER
         return 0
 
-    raise typer.Exit(_guard(body, debug))
+    raise typer.Exit(guard(body, debug))
 
 
 @app.command("new")
@@ -630,10 +494,10 @@ def new_command(
             from mdcalc.casefile import write_toml_atomic
 
             write_toml_atomic(output, data, force=force)
-            _stderr(f"wrote {output}")
+            print_error(f"wrote {output}")
         return 0
 
-    raise typer.Exit(_guard(body, debug))
+    raise typer.Exit(guard(body, debug))
 
 
 def _version(value: bool) -> None:
@@ -652,16 +516,7 @@ def _main(
 
 
 def main() -> None:
-    import os
-    import warnings
-
-    # numpy's and scipy's RuntimeWarnings (an overflow in a step that is then
-    # rejected) are noise to a user; what they mean is reported as a result, a
-    # failed row or no answer (solve_model silences them too, for in-process use).
-    warnings.filterwarnings("ignore", category=RuntimeWarning)
-
-    # pydantic looks for plugins through importlib.metadata when it builds the first
-    # model (~25 ms of a 0.3 s run); mdcalc's models use none.
-    os.environ.setdefault("PYDANTIC_DISABLE_PLUGINS", "__all__")
-    no_plugin_discovery()
+    """The typer application (every command and option); the console script is
+    :func:`mdcalc.launch.main`, which takes a plain problem run past typer."""
+    prepare()
     app()

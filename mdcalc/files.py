@@ -55,7 +55,11 @@ def read_regular(path: Path, limit: int = MAX_CASE_BYTES) -> bytes:
 
 
 def write_atomic(
-    path: Path, content: str | bytes | Callable[[str], None], *, replace: bool, option: str = ""
+    path: Path,
+    content: str | bytes | bytearray | Callable[[str], None],
+    *,
+    replace: bool,
+    option: str = "",
 ) -> None:
     """Write ``content`` to ``path`` (text, bytes, or a function that writes the file
     whose name it is given) through a temporary file and a rename. ``replace``

@@ -372,8 +372,8 @@ def _module(problem: str) -> Any:
 # ------------------------------------------------------------------------- output
 
 
-def to_csv(table: Table) -> str:
-    """CSV with a header of ``key [unit]`` and a ``status`` column (0, 2, 3, 70).
+def to_csv(table: Table) -> bytearray:
+    """CSV (UTF-8) with a header of ``key [unit]`` and a ``status`` column (0, 2, 3, 70).
 
     Each number is the shortest text that reads back as the same float, a whole
     number without ".0" (orjson's formatting, in C: a million rows in a fraction of a
@@ -382,31 +382,48 @@ def to_csv(table: Table) -> str:
     import orjson
 
     header = [f"{k} [{table.units[k]}]" if table.units.get(k) else k for k in table.keys]
-    head = ",".join([*header, "status"]) + "\n"
+    head = (",".join([*header, "status"]) + "\n").encode()
     if len(table.status) == 0:
-        return head
-    matrix = np.column_stack([np.asarray(table.columns[k], dtype=float) for k in table.keys])
-    text = orjson.dumps(matrix, option=orjson.OPT_SERIALIZE_NUMPY)
-    with np.errstate(invalid="ignore"):
-        whole = (np.mod(matrix, 1.0) == 0.0).all(axis=0)
-    if whole.any():  # a count (pairs.driven = 2) without ".0"; each pass reads the text
+        return bytearray(head)
+    columns = [np.asarray(table.columns[k], dtype=float) for k in table.keys]
+    text = orjson.dumps(np.column_stack(columns), option=orjson.OPT_SERIALIZE_NUMPY)
+    if any(_whole(column) for column in columns):
+        # A count (pairs.driven = 2) without ".0"; each pass reads the whole text.
         text = text.replace(b".0,", b",").replace(b".0]", b"]")
-    if np.isnan(matrix).any():  # orjson writes NaN as null: an empty field
-        text = text.replace(b"null", b"")
-    rows = text[2:-2]  # [[a,b],[c,d]] -> a,b],[c,d
-    if not table.status.any():
-        body = rows.replace(b"],[", b",0\n") + b",0\n"
-    else:
-        body = b"".join(
+    if any(np.isnan(column).any() for column in columns):
+        text = text.replace(b"null", b"")  # orjson writes NaN as null: an empty field
+    rows = np.frombuffer(text, dtype=np.uint8)[2:-2]  # [[a,b],[c,d]] -> a,b],[c,d
+    if table.status.any():
+        lines = b"".join(
             b"%s,%d\n" % pair
-            for pair in zip(rows.split(b"],["), table.status.tolist(), strict=True)
+            for pair in zip(rows.tobytes().split(b"],["), table.status.tolist(), strict=True)
         )
-    return head + body.decode()
+        return bytearray(head + lines)
+    # Every status 0: each row's end "],[" becomes ",0\n" in place (the same length),
+    # found by numpy over the bytes ("]" is nowhere else), one copy in all.
+    out = bytearray(len(head) + len(rows) + 3)
+    buffer = np.frombuffer(out, dtype=np.uint8)
+    buffer[: len(head)] = np.frombuffer(head, dtype=np.uint8)
+    body = buffer[len(head) :]
+    body[:-3] = rows
+    ends = np.flatnonzero(body == ord("]"))
+    body[ends], body[ends + 1], body[ends + 2] = ord(","), ord("0"), ord("\n")
+    body[-3:] = np.frombuffer(b",0\n", dtype=np.uint8)
+    return out
 
 
-def to_json(table: Table, sweep: Plan) -> str:
-    """The sweep as one JSON document (``values``: a list per key, null where a point
-    has no value), written by orjson straight from the numpy columns."""
+def _whole(column: Any) -> bool:
+    """Every value a whole number (the first one looked at before the whole column)."""
+    import numpy as np
+
+    return bool(
+        column.size and column[0] == np.rint(column[0]) and np.array_equal(np.rint(column), column)
+    )
+
+
+def to_json(table: Table, sweep: Plan) -> bytes:
+    """The sweep as one JSON document, UTF-8 bytes (``values``: a list per key, null
+    where a point has no value), written by orjson straight from the numpy columns."""
     import numpy as np
     import orjson
 
@@ -425,7 +442,7 @@ def to_json(table: Table, sweep: Plan) -> str:
         "values": {k: np.asarray(table.columns[k], dtype=float) for k in table.keys},
         "status": np.asarray(table.status, dtype=np.int64),
     }
-    return orjson.dumps(document, option=orjson.OPT_SERIALIZE_NUMPY).decode()
+    return orjson.dumps(document, option=orjson.OPT_SERIALIZE_NUMPY)
 
 
 def summary_rows(table: Table) -> list[tuple[str, str, str, str]]:

@@ -17,11 +17,32 @@ CASES = ROOT / "cases"
 MDCALC = Path(sys.executable).parent / "mdcalc"
 
 
+class ConsoleScript:
+    """The console script (:func:`mdcalc.launch.main`: a plain problem run past typer,
+    the rest through it) in the shape typer's CliRunner invokes."""
+
+    name = "mdcalc"
+
+    def main(self, args: Any = (), prog_name: str = "mdcalc", **extra: Any) -> None:
+        from mdcalc.launch import main
+
+        saved = sys.argv
+        sys.argv = [prog_name, *args]
+        try:
+            main()
+        finally:
+            sys.argv = saved
+
+
 @pytest.fixture
-def cli():
-    """Invoke the typer app in-process; returns click's Result (exit_code, stdout, stderr)."""
+def cli(monkeypatch):
+    """Invoke the console script in-process, as a user's command line reaches it;
+    returns click's Result (exit_code, stdout, stderr)."""
+    import typer.testing
+
     from mdcalc.cli import app
 
+    monkeypatch.setattr(typer.testing, "_get_command", lambda _: ConsoleScript())
     runner = CliRunner()
 
     def invoke(*args: str):

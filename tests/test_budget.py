@@ -68,6 +68,28 @@ def test_the_alarm_stops_a_loop_that_never_checks_and_the_old_alarm_comes_back()
         signal.signal(signal.SIGALRM, previous)
 
 
+@pytest.mark.skipif(not hasattr(signal, "setitimer"), reason="POSIX alarms")
+def test_the_alarm_does_not_raise_inside_a_finalizer(monkeypatch):
+    # An exception raised in a __del__ (an object collected while the deadline
+    # passes) is swallowed with "Exception ignored in ..." on stderr and stops
+    # nothing; the alarm waits for the loop outside it.
+    swallowed: list[object] = []
+    monkeypatch.setattr("sys.unraisablehook", swallowed.append)
+
+    class SlowToCollect:
+        def __del__(self) -> None:
+            spin(0.3)
+
+    start = time.perf_counter()
+    with pytest.raises(budget.OverBudget), budget.limit(0.05):
+        slow = SlowToCollect()
+        del slow  # its __del__ runs past the deadline and the grace
+        assert time.perf_counter() - start >= 0.3
+        spin(5.0)
+    assert time.perf_counter() - start < 0.7
+    assert swallowed == []
+
+
 def test_a_finished_limit_leaves_no_alarm_behind():
     with budget.limit(0.05):
         pass

@@ -12,7 +12,7 @@ from tests.conftest import CASES
 PROBE = """
 import sys
 sys.argv = ["mdcalc", *{args!r}]
-from mdcalc.cli import main
+from mdcalc.launch import main
 try:
     main()
 except SystemExit:
@@ -146,7 +146,7 @@ print(json.dumps(out))
 
 UNDECLARED = """
 import contextlib, io, sys
-from mdcalc.cli import main
+from mdcalc.launch import main
 HEAVY = {"scipy", "pint", "matplotlib"}
 for name in sys.argv[1:]:
     problem = name.split("::")[0]

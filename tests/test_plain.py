@@ -178,7 +178,7 @@ def test_piped_command_prints_riches_text_without_importing_rich():
     probe = (
         "import sys\n"
         f"sys.argv = ['mdcalc', 'braking', {str(lecture)!r}]\n"
-        "from mdcalc.cli import main\n"
+        "from mdcalc.launch import main\n"
         "try:\n    main()\nexcept SystemExit:\n    pass\n"
         "print(sorted(m for m in sys.modules if m == 'rich'"
         " or m.startswith(('rich.', 'importlib.metadata'))), file=sys.stderr)\n"

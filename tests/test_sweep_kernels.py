@@ -107,3 +107,55 @@ def test_a_huge_grid_is_refused_before_it_is_built(cli):
     for result in (one, two):
         assert result.exit_code == 2, result.stderr
         assert "the limit is 10,000,000" in result.stderr
+
+
+def test_a_branch_that_holds_nowhere_on_the_grid_is_not_run():
+    # xp.where runs only the branch that holds when the condition is the same over
+    # the whole grid, and still gives the grid's shape; a mixed one blends both.
+    from mdcalc.core.xp import arrays
+
+    xp, ran = arrays(), []
+
+    def branch(name: str, value: float):
+        return lambda: ran.append(name) or (value, np.array([value] * 3))
+
+    speed = np.array([1.0, 2.0, 3.0])
+    same = xp.where(speed > 0.0, branch("then", 1.0), branch("else", 2.0))
+    assert ran == ["then"]
+    assert [list(column) for column in same] == [[1.0] * 3, [1.0] * 3]
+    ran.clear()
+    assert list(xp.where(speed > 5.0, lambda: speed, lambda: 0.0)) == [0.0] * 3
+    mixed = xp.where(speed > 1.5, branch("then", 1.0), branch("else", 2.0))
+    assert ran == ["then", "else"]
+    assert list(mixed[0]) == [2.0, 1.0, 1.0]
+
+
+def test_the_braking_kernel_is_bit_identical_whether_branches_are_skipped_or_blended(
+    monkeypatch,
+):
+    # The lecture scene (no drag, no stop in the reaction) takes one branch of each
+    # condition over a whole grid; blending both as before gives the same bits.
+    from mdcalc.casefile import read_case, validate
+    from mdcalc.core import xp
+
+    module = PROBLEMS["braking"].load()
+    case = validate(module.Case, read_case(CASES / "braking" / "lecture.toml"))
+    mass, speed = np.meshgrid(np.linspace(800, 3000, 40), np.linspace(5, 50, 30))
+    grid = {"vehicle.mass": mass.ravel(), "vehicle.initial_speed": speed.ravel()}
+    skipped = module.sweep(case, grid)
+
+    def blend(self, condition, then, otherwise):
+        with np.errstate(all="ignore"):
+            if np.ndim(condition) == 0:
+                return then() if condition else otherwise()
+            chosen, other = then(), otherwise()
+            if isinstance(chosen, tuple):
+                return tuple(np.where(condition, a, b) for a, b in zip(chosen, other, strict=True))
+            return np.where(condition, chosen, other)
+
+    monkeypatch.setattr(xp.Arrays, "where", blend)
+    blended = module.sweep(case, grid)
+    assert skipped.keys() == blended.keys()
+    for key in skipped:
+        assert np.shape(skipped[key]) == np.shape(blended[key]) == (1200,), key
+        np.testing.assert_array_equal(skipped[key], blended[key], err_msg=key)

@@ -133,8 +133,22 @@ def _alarm(signum: int, frame: Any) -> None:
     budget = current()
     if budget is None or not budget.deadlines:
         return  # stale: the limit it was set for has ended
-    if time.perf_counter() > budget.deadline + GRACE:
+    if time.perf_counter() > budget.deadline + GRACE and not _in_finalizer(frame):
         raise OverBudget
+
+
+#: Code where an exception cannot stop anything: Python swallows it with an
+#: "Exception ignored in ..." on stderr and goes on. The next tick raises outside.
+_FINALIZERS = frozenset({"__del__", "unraisablehook", "unraisable_hook", "excepthook"})
+
+
+def _in_finalizer(frame: Any) -> bool:
+    """Is the interrupted code (or what called it) a finalizer or an error hook?"""
+    while frame is not None:
+        if frame.f_code.co_name in _FINALIZERS:
+            return True
+        frame = frame.f_back
+    return False
 
 
 def _save_alarm() -> tuple[Any, tuple[float, float], float] | None:

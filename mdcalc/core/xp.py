@@ -9,7 +9,8 @@ point by point at once. The two agree to round-off (tests/test_sweep_kernels.py)
 ``xp.where(condition, then, otherwise)`` takes its branches as functions: for a
 float only the branch that applies runs (so ``math.sqrt`` of a negative number in
 the other one never raises); for arrays both run under ``np.errstate(all="ignore")``
-and are blended, so the branch that does not apply may produce inf or nan freely.
+and are blended, so the branch that does not apply may produce inf or nan freely
+(a condition that holds everywhere, or nowhere, on the grid runs only its branch).
 A branch may give a tuple of results: they are blended one by one. A condition that
 is one value (the inputs it depends on are not varied) runs one branch, as for a
 float: a branch's arithmetic on plain floats would raise where numpy's gives inf.
@@ -85,10 +86,23 @@ class Arrays:
         with np.errstate(all="ignore"):
             if np.ndim(condition) == 0:  # one scene's condition: one branch, as for floats
                 return then() if condition else otherwise()
+            everywhere = bool(np.all(condition))
+            if everywhere or not np.any(condition):
+                # One branch holds over the whole grid: only it runs, spread over the
+                # grid's shape as a blend would be (a read-only view, not a copy).
+                chosen = then() if everywhere else otherwise()
+                if isinstance(chosen, tuple):
+                    return tuple(_spread(np, a, np.shape(condition)) for a in chosen)
+                return _spread(np, chosen, np.shape(condition))
             chosen, other = then(), otherwise()
             if isinstance(chosen, tuple):  # several results of one branch, blended alike
                 return tuple(np.where(condition, a, b) for a, b in zip(chosen, other, strict=True))
             return np.where(condition, chosen, other)
+
+
+def _spread(np: Any, value: Any, shape: tuple[int, ...]) -> Any:
+    """``value`` over ``shape`` (and its own), as ``np.where`` would shape it."""
+    return np.broadcast_to(value, np.broadcast_shapes(np.shape(value), shape))
 
 
 FLOATS = Floats()

@@ -1,0 +1,171 @@
+"""What a problem command does once its arguments are read, without typer.
+
+Shared by the typer application (:mod:`mdcalc.cli`) and the console script's direct
+path for a plain run (:mod:`mdcalc.launch`): the same body, the same exit codes and
+messages whichever parsed the command line. Imports nothing heavy: a scene's
+modules load inside the body.
+"""
+
+import sys
+import traceback
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+from mdcalc import __version__
+from mdcalc.errors import (
+    EXIT_BUG,
+    EXIT_INPUT,
+    EXIT_INTERRUPTED,
+    EXIT_NO_ANSWER,
+    InputError,
+    Problem,
+)
+from mdcalc.problems import ProblemSpec
+
+#: mdcalc.core.budget.DEFAULT_SECONDS (not imported here: the CLI loads it only to run).
+DEFAULT_TIME_LIMIT = 60.0
+
+
+def limit_of(seconds: float) -> float | None:
+    """A --time-limit value as the solvers take it: 0 is none."""
+    return seconds if seconds > 0 else None
+
+
+def print_error(line: str) -> None:
+    print(line, file=sys.stderr)
+
+
+#: The width of text written to a pipe or a file (a terminal's own width otherwise).
+PIPE_WIDTH = 140
+
+
+def make_console(stderr: bool = False) -> Any:
+    from rich.console import Console
+
+    stream = sys.stderr if stderr else sys.stdout
+    # A pipe gets plain text at a width that keeps the Methods table on one line.
+    return Console(file=stream, width=None if stream.isatty() else PIPE_WIDTH, highlight=False)
+
+
+def guard(body: Callable[[], int], debug: bool) -> int:
+    """Run a command body; map errors to the exit codes of the contract."""
+    try:
+        return body()
+    except InputError as exc:
+        print_error(str(exc))
+        return EXIT_INPUT
+    except KeyboardInterrupt:
+        import signal
+
+        signal.signal(signal.SIGINT, signal.SIG_DFL)  # a second Ctrl-C ends at once
+        print_error("mdcalc: interrupted")
+        return EXIT_INTERRUPTED
+    except BrokenPipeError:
+        # The reader went away (`mdcalc ... | head`): not a bug. Point stdout at
+        # devnull so the interpreter's final flush does not complain again.
+        import os
+
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 141
+    except Exception as exc:
+        if debug:
+            traceback.print_exc()
+        print_error(
+            f"mdcalc: internal error: {type(exc).__name__}: {exc} -- this is a bug in "
+            f"mdcalc {__version__}; please report it with the case file"
+            + ("" if debug else " (--debug shows the traceback)")
+        )
+        return EXIT_BUG
+
+
+def run_problem(
+    spec: ProblemSpec,
+    case: Path,
+    as_json: bool,
+    debug: bool,
+    plot: Path | None = None,
+    save: Path | None = None,
+    force: bool = False,
+    time_limit: float | None = DEFAULT_TIME_LIMIT,
+) -> int:
+    def body() -> int:
+        from mdcalc.report import to_json
+
+        check_outputs(case, plot, save, force)
+        from mdcalc.casefile import read_case
+        from mdcalc.runner import solve_text
+
+        run = solve_text(read_case(case), expected_problem=spec.name, time_limit=time_limit)
+        report = run.report
+        charts = _charts(run, plot) if plot is not None else []
+        if as_json:
+            print(to_json(report))
+        else:
+            from mdcalc.terminal import print_report
+
+            print_report(report, PIPE_WIDTH, make_console)
+        if plot is not None and charts:
+            from mdcalc.plot import render
+
+            render(charts, plot, title=report.title, replace=force)
+            print_error(f"wrote {plot}")
+        if save is not None:
+            _save(run, save, force)
+            print_error(f"wrote {save}")
+        if report.status != "ok":
+            print_error(f"{case}: error: no answer: {report.message}")
+            return EXIT_NO_ANSWER
+        return 0
+
+    return guard(body, debug)
+
+
+def check_outputs(case: Path, plot: Path | None, save: Path | None, force: bool) -> None:
+    """Refuse --plot and --save paths before anything is computed."""
+    problems: list[tuple[Path, str]] = []
+    for option, path, suffixes in (("--plot", plot, None), ("--save", save, (".toml",))):
+        if path is None:
+            continue
+        if suffixes is None:
+            from mdcalc.plot import FORMATS, matplotlib_missing
+
+            if path.suffix.lower() not in FORMATS:
+                problems.append((path, f"{option}: use a file ending {', '.join(FORMATS)}"))
+            elif (missing := matplotlib_missing()) is not None:
+                problems.append((path, missing))
+        elif path.suffix.lower() not in suffixes:
+            problems.append((path, f"{option}: use a file ending .toml"))
+        try:
+            path.exists()
+        except OSError as exc:  # a name too long, say
+            problems.append((path, f"{option}: cannot use this path: {exc.strerror}"))
+            continue
+        if path.is_dir():
+            problems.append((path, f"{option}: is a folder; give a file name"))
+        elif path.exists() and not force:
+            problems.append((path, f"{option}: the file exists; use --force to overwrite it"))
+        elif path.resolve() == case.resolve():
+            problems.append((path, f"{option}: would overwrite the case file itself"))
+    if problems:  # the first file's problems (an error names one file)
+        first = problems[0][0]
+        raise InputError(first, [Problem(m) for path, m in problems if path == first])
+
+
+def _charts(run: Any, plot: Path) -> list[Any]:
+    make = getattr(run.module, "charts", None)
+    charts = make(run.result) if make is not None and run.result is not None else []
+    if not charts:
+        why = "this problem draws no plot" if make is None else "this scene has no curve to draw"
+        print_error(f"{plot}: warning: --plot: {why}; no file written")
+    return list(charts)
+
+
+def _save(run: Any, path: Path, force: bool) -> None:
+    """The case as read, with the results in a [saved] table (tomli-w, atomic)."""
+    from mdcalc.casefile import write_toml_atomic
+    from mdcalc.report import saved_table
+
+    data = {k: v for k, v in run.case.data.items() if k != "saved"}
+    data["saved"] = {**saved_table(run.report), "case": str(run.case.path)}
+    write_toml_atomic(path, data, force=force)

@@ -1,0 +1,58 @@
+"""The console script ``mdcalc``.
+
+A plain run of one scene, ``mdcalc PROBLEM CASE.toml [--json] [--debug]`` (what a
+shell loop over case files types), goes straight to the problem's command body
+(:func:`mdcalc.command.run_problem`) without importing typer: its parser and the
+building of every command are most of what such a run spends above the stack's
+floor. Any other command line, an option more, a misspelling, ``--help``, shell
+completion, goes through the typer application (:mod:`mdcalc.cli`) as before; the
+body, its output, its messages and exit codes are the same either way
+(tests/test_launch.py).
+"""
+
+import os
+import sys
+
+from mdcalc.startup import prepare
+
+#: The flags a direct run takes (each a bool, False when absent).
+DIRECT_FLAGS = ("--json", "--debug")
+
+
+def direct_run(argv: list[str]) -> tuple[str, str, bool, bool] | None:
+    """(problem, case, as_json, debug) when ``argv`` is a plain problem run the direct
+    path takes; None for anything the typer application must parse."""
+    from mdcalc.problems import PROBLEMS
+
+    if not argv or argv[0] not in PROBLEMS:
+        return None
+    if any(name.startswith("_") and name.endswith("_COMPLETE") for name in os.environ):
+        return None  # click's shell completion is asking
+    cases = [arg for arg in argv[1:] if not arg.startswith("-")]
+    flags = [arg for arg in argv[1:] if arg.startswith("-")]
+    if len(cases) != 1 or not cases[0] or any(flag not in DIRECT_FLAGS for flag in flags):
+        return None
+    return argv[0], cases[0], "--json" in flags, "--debug" in flags
+
+
+def main() -> None:
+    prepare()
+    try:
+        plain = direct_run(sys.argv[1:])
+        if plain is not None:
+            from pathlib import Path
+
+            from mdcalc.command import DEFAULT_TIME_LIMIT, run_problem
+            from mdcalc.problems import PROBLEMS
+
+            problem, case, as_json, debug = plain
+            spec = PROBLEMS[problem]
+            sys.exit(run_problem(spec, Path(case), as_json, debug, time_limit=DEFAULT_TIME_LIMIT))
+    except KeyboardInterrupt:  # before the body's own guard: as it would say
+        from mdcalc.errors import EXIT_INTERRUPTED
+
+        print("mdcalc: interrupted", file=sys.stderr)
+        sys.exit(EXIT_INTERRUPTED)
+    from mdcalc.cli import app
+
+    app()

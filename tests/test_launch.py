@@ -1,0 +1,142 @@
+"""The console script's direct path: a plain problem run skips typer, with the same
+output, messages and exit codes as the typer application gives the same line."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+
+import pytest
+from typer.testing import CliRunner
+
+from mdcalc.launch import direct_run
+from tests.conftest import CASES
+
+LECTURE = str(CASES / "braking" / "lecture.toml")
+
+
+@pytest.mark.parametrize(
+    ("argv", "expected"),
+    [
+        (["braking", "a.toml"], ("braking", "a.toml", False, False)),
+        (["braking", "a.toml", "--json"], ("braking", "a.toml", True, False)),
+        (["hoist", "--debug", "a.toml", "--json"], ("hoist", "a.toml", True, True)),
+        (["mine-hoist", "--json", "--json", "a.toml"], ("mine-hoist", "a.toml", True, False)),
+    ],
+)
+def test_plain_problem_runs_take_the_direct_path(argv, expected):
+    assert direct_run(argv) == expected
+
+
+@pytest.mark.parametrize(
+    "argv",
+    [
+        [],
+        ["--help"],
+        ["--version"],
+        ["braking"],  # the case missing: typer says so
+        ["braking", "--help"],
+        ["braking", "-h"],
+        ["braking", "a.toml", "b.toml"],  # an extra argument
+        ["braking", ""],
+        ["braking", "a.toml", "--time-limit", "5"],
+        ["braking", "a.toml", "--time-limit=5"],
+        ["braking", "a.toml", "--jsn"],  # a misspelt flag: typer's message
+        ["braking", "--", "a.toml"],
+        ["braking", "a.toml", "--plot", "p.png"],
+        ["brakes", "a.toml"],  # no such problem
+        ["run", "a.toml"],
+        ["check", "cases"],
+    ],
+)
+def test_everything_else_goes_through_typer(argv):
+    assert direct_run(argv) is None
+
+
+def test_shell_completion_goes_through_typer(monkeypatch):
+    monkeypatch.setenv("_MDCALC_COMPLETE", "complete_bash")
+    assert direct_run(["braking", "a.toml"]) is None
+
+
+SCENES = [
+    ["braking", LECTURE],
+    ["braking", LECTURE, "--json"],
+    ["hoist", str(CASES / "hoist" / "cannot_start.toml")],  # no answer: exit 3
+    ["hoist", LECTURE],  # a case of another problem: exit 2
+    ["braking", str(CASES / "no-such-case.toml")],  # exit 2
+    ["mount", str(CASES / "mount"), "--json"],  # a folder: exit 2
+]
+
+
+@pytest.mark.parametrize("argv", SCENES, ids=[" ".join(a[:1] + a[2:]) for a in SCENES])
+def test_the_direct_path_and_typer_give_the_same(argv, monkeypatch, write_case):
+    from mdcalc import methods
+    from mdcalc.cli import app
+    from mdcalc.launch import main
+
+    monkeypatch.setattr(methods, "timed", lambda run: (run(), 1e-6))  # no timer noise
+    typer_way = CliRunner().invoke(app, argv)
+
+    class Script:
+        name = "mdcalc"
+
+        def main(self, args, prog_name, **extra):
+            sys.argv = [prog_name, *args]
+            main()
+
+    import typer.testing
+
+    monkeypatch.setattr(sys, "argv", list(sys.argv))
+    monkeypatch.setattr(typer.testing, "_get_command", lambda _: Script())
+    direct = CliRunner().invoke(app, argv)
+    assert direct_run(argv) is not None
+    assert (direct.exit_code, direct.stdout, direct.stderr) == (
+        typer_way.exit_code,
+        typer_way.stdout,
+        typer_way.stderr,
+    )
+    assert typer_way.exit_code in (0, 2, 3)
+
+
+def test_a_bug_on_the_direct_path_is_one_line_and_the_traceback_with_debug(cli, monkeypatch):
+    from mdcalc.problems import braking
+
+    def broken(case):
+        raise RuntimeError("boom")
+
+    monkeypatch.setattr(braking, "solve", broken)
+    plain = cli("braking", LECTURE)
+    assert plain.exit_code == 70
+    assert plain.stderr.count("\n") == 1 and "internal error: RuntimeError: boom" in plain.stderr
+    debug = cli("braking", LECTURE, "--debug")
+    assert debug.exit_code == 70 and "Traceback" in debug.stderr
+
+
+PROBE = """
+import sys
+sys.argv = ["mdcalc", *{args!r}]
+from mdcalc.launch import main
+try:
+    main()
+except SystemExit as exit:
+    code = exit.code
+print("TYPER", "typer" in sys.modules, code, file=sys.stderr)
+"""
+
+
+@pytest.mark.parametrize(
+    ("args", "typer", "code"),
+    [
+        (["braking", LECTURE, "--json"], False, 0),
+        (["braking", LECTURE, "--time-limit", "5"], True, 0),
+        (["braking", LECTURE, "--jsn"], True, 2),
+    ],
+)
+def test_a_plain_run_does_not_import_typer(args, typer, code):
+    done = subprocess.run(
+        [sys.executable, "-c", PROBE.format(args=args)],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
+    assert done.stderr.strip().splitlines()[-1] == f"TYPER {typer} {code}"
