@@ -17,16 +17,17 @@ from pathlib import Path
 from typing import Any
 
 from mdcalc import __version__
-from mdcalc.errors import EXIT_BUG, EXIT_INPUT, EXIT_NO_ANSWER, EXIT_OK, InputError
+from mdcalc.errors import (
+    EXIT_BUG,
+    EXIT_INPUT,
+    EXIT_NO_ANSWER,
+    EXIT_OK,
+    STATUS_OF_EXIT,
+    InputError,
+)
 
 #: Worse outcomes first: the exit code of a batch is the worst of its files'.
 SEVERITY = (EXIT_BUG, EXIT_INPUT, EXIT_NO_ANSWER, EXIT_OK)
-STATUS_OF_EXIT = {
-    EXIT_OK: "ok",
-    EXIT_NO_ANSWER: "no-answer",
-    EXIT_INPUT: "input-error",
-    EXIT_BUG: "internal-error",
-}
 
 
 def worst_exit(codes: Iterable[int]) -> int:
@@ -49,6 +50,7 @@ class Outcome:
     text: str = ""  # the rendered report (text mode)
     messages: list[str] = field(default_factory=list)  # for stderr
     seconds: float = 0.0
+    document: str = ""  # the HTML calculation report (run --report-dir)
 
     @property
     def status(self) -> str:
@@ -67,6 +69,8 @@ class RunOptions:
     timing_budget: float = 2e-5
     #: Each file's time limit [s] (None: none).
     time_limit: float | None = 60.0
+    #: Make each file's HTML calculation report (``run --report-dir``).
+    document: bool = False
 
 
 def _error_json(path: str, status: str, problems: list[dict[str, object]]) -> str:
@@ -85,7 +89,7 @@ def run_file(path: str, options: RunOptions) -> Outcome:
     from mdcalc import methods
     from mdcalc.casefile import read_case
     from mdcalc.report import render_plain, render_rich, to_json
-    from mdcalc.runner import run_text
+    from mdcalc.runner import solve_text
 
     methods.MIN_TIMING_SECONDS = options.timing_budget
     start = time.perf_counter()
@@ -95,7 +99,8 @@ def run_file(path: str, options: RunOptions) -> Outcome:
             outcome = run_study_file(case, options)
             outcome.seconds = time.perf_counter() - start
             return outcome
-        report = run_text(case, time_limit=options.time_limit)
+        run = solve_text(case, time_limit=options.time_limit)
+        report = run.report
         outcome = Outcome(
             path,
             EXIT_OK if report.status == "ok" else EXIT_NO_ANSWER,
@@ -106,6 +111,10 @@ def run_file(path: str, options: RunOptions) -> Outcome:
             outcome.messages.append(f"{path}: error: no answer: {report.message}")
         if options.json:
             outcome.json = to_json(report, indent=None)
+        if options.document:
+            from mdcalc.document import document_of, html_of
+
+            outcome.document = html_of(document_of(run))
         if options.text:
             plain = None if options.color else render_plain(report, options.width)
             outcome.text = plain or _rendered(lambda c: render_rich(report, c), options)

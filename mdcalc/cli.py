@@ -130,7 +130,16 @@ CaseArgument = Annotated[
     ),
 ]
 ForceOption = Annotated[
-    bool, typer.Option("--force", help="Let --plot and --save overwrite a file.")
+    bool, typer.Option("--force", help="Let --plot, --save and --report overwrite a file.")
+]
+ReportOption = Annotated[
+    Path | None,
+    typer.Option(
+        "--report",
+        help="Write a calculation report to FILE.html (charts inline) or FILE.md (chart "
+        "PNGs beside it): inputs, results, Methods tables, notes, case file SHA-256.",
+        metavar="FILE",
+    ),
 ]
 
 
@@ -140,12 +149,14 @@ def _make_problem_command(spec: ProblemSpec) -> Callable[..., None]:
         as_json: JsonOption = False,
         plot: PlotOption = None,
         save: SaveOption = None,
+        report: ReportOption = None,
         force: ForceOption = False,
         time_limit: TimeLimitOption = DEFAULT_TIME_LIMIT,
         debug: DebugOption = False,
     ) -> None:
+        limit = limit_of(time_limit)
         raise typer.Exit(
-            run_problem(spec, case, as_json, debug, plot, save, force, limit_of(time_limit))
+            run_problem(spec, case, as_json, debug, plot, save, force, limit, document=report)
         )
 
     command.__doc__ = spec.summary
@@ -230,6 +241,14 @@ def run_command(
     as_json: Annotated[
         bool, typer.Option("--json", help="Write each result as one JSON line on stdout.")
     ] = False,
+    report_dir: Annotated[
+        Path | None,
+        typer.Option(
+            "--report-dir",
+            help="Write each file's calculation report to DIR/<name>.html and an index.html.",
+            metavar="DIR",
+        ),
+    ] = None,
     time_limit: TimeLimitOption = DEFAULT_TIME_LIMIT,
     scheduler: SchedulerOption = None,
     debug: DebugOption = False,
@@ -245,12 +264,13 @@ def run_command(
         import time
         from collections import Counter
 
-        from mdcalc.batch import STATUS_OF_EXIT, FileRunner, RunOptions, lost_file, worst_exit
+        from mdcalc.batch import FileRunner, RunOptions, lost_file, worst_exit
         from mdcalc.cluster import executor, scheduler_of
+        from mdcalc.errors import STATUS_OF_EXIT
         from mdcalc.pool import collect, default_jobs
         from mdcalc.terminal import print_run_summary
 
-        files = collect(paths, outputs=out is not None)
+        files = collect(paths, outputs=out is not None or report_dir is not None)
         if not files:
             raise InputError(" ".join(map(str, paths)), [Problem("no *.toml case files here")])
         workers = jobs or default_jobs(len(files))
@@ -262,8 +282,10 @@ def run_command(
             color=_color(),
             width=width,
             time_limit=limit_of(time_limit),
+            document=report_dir is not None,
         )
         counts: Counter[str] = Counter()
+        index: list[tuple[str, str, str, str, str]] = []
         failed: list[tuple[str, str]] = []
         with executor(scheduler_of(scheduler), workers) as mapper:
             start = time.perf_counter()
@@ -272,15 +294,34 @@ def run_command(
             outcomes = mapper(FileRunner(options), [str(f.path) for f in files], on_error=lost_file)
             for case, outcome in zip(files, outcomes, strict=True):
                 flushed = _write_outcome(case, outcome, out, as_json, text, flushed)
+                if report_dir is not None:
+                    index.append(_write_document(case, outcome, report_dir))
                 counts[outcome.status] += 1
                 if outcome.exit_code != 0:
                     failed.append((outcome.path, outcome.status))
         seconds = time.perf_counter() - start
+        if report_dir is not None:
+            from mdcalc.casefile import write_text_atomic
+            from mdcalc.document import index_html
+
+            write_text_atomic(report_dir / "index.html", index_html(index))
+            print_error(f"wrote {report_dir / 'index.html'} and {len(files)} reports")
         how = mapper.description
         print_run_summary(counts, failed, len(files), seconds, how, stderr=as_json)
         return worst_exit(code for code, status in STATUS_OF_EXIT.items() if counts[status])
 
     raise typer.Exit(guard(body, debug))
+
+
+def _write_document(case: Any, outcome: Any, folder: Path) -> tuple[str, str, str, str, str]:
+    """Write a file's HTML report under ``folder``; its row of the index page."""
+    from mdcalc.casefile import write_text_atomic
+
+    name = case.out_name.with_suffix(".html")
+    if outcome.document:
+        write_text_atomic(folder / name, outcome.document)
+    link = name.as_posix() if outcome.document else ""
+    return (str(case.path), outcome.problem or "", outcome.title or "", outcome.status, link)
 
 
 def _write_outcome(

@@ -88,11 +88,12 @@ def run_problem(
     save: Path | None = None,
     force: bool = False,
     time_limit: float | None = DEFAULT_TIME_LIMIT,
+    document: Path | None = None,
 ) -> int:
     def body() -> int:
         from mdcalc.report import to_json
 
-        check_outputs(case, plot, save, force)
+        check_outputs(case, plot, save, force, document)
         from mdcalc.casefile import read_case
         from mdcalc.runner import solve_text
 
@@ -113,6 +114,11 @@ def run_problem(
         if save is not None:
             _save(run, save, force)
             print_error(f"wrote {save}")
+        if document is not None:
+            from mdcalc.document import write
+
+            for written in write(run, document, force):
+                print_error(f"wrote {written}")
         if report.status != "ok":
             print_error(f"{case}: error: no answer: {report.message}")
             return EXIT_NO_ANSWER
@@ -121,10 +127,17 @@ def run_problem(
     return guard(body, debug)
 
 
-def check_outputs(case: Path, plot: Path | None, save: Path | None, force: bool) -> None:
-    """Refuse --plot and --save paths before anything is computed."""
+def check_outputs(
+    case: Path, plot: Path | None, save: Path | None, force: bool, document: Path | None = None
+) -> None:
+    """Refuse --plot, --save and --report paths before anything is computed."""
     problems: list[tuple[Path, str]] = []
-    for option, path, suffixes in (("--plot", plot, None), ("--save", save, (".toml",))):
+    outputs = (
+        ("--plot", plot, None),
+        ("--save", save, (".toml",)),
+        ("--report", document, (".html", ".md")),
+    )
+    for option, path, suffixes in outputs:
         if path is None:
             continue
         if suffixes is None:
@@ -135,7 +148,7 @@ def check_outputs(case: Path, plot: Path | None, save: Path | None, force: bool)
             elif (missing := matplotlib_missing()) is not None:
                 problems.append((path, missing))
         elif path.suffix.lower() not in suffixes:
-            problems.append((path, f"{option}: use a file ending .toml"))
+            problems.append((path, f"{option}: use a file ending {' or '.join(suffixes)}"))
         try:
             path.exists()
         except OSError as exc:  # a name too long, say

@@ -17,6 +17,13 @@ EXIT_INPUT = 2
 EXIT_NO_ANSWER = 3
 EXIT_BUG = 70
 EXIT_INTERRUPTED = 130  # Ctrl-C (128 + SIGINT), as a shell reports it
+#: How a case (a file of a batch, a point of a sweep) ended, in words (JSON, tables).
+STATUS_OF_EXIT = {
+    EXIT_OK: "ok",
+    EXIT_NO_ANSWER: "no-answer",
+    EXIT_INPUT: "input-error",
+    EXIT_BUG: "internal-error",
+}
 
 
 class MdcalcError(Exception):

@@ -112,6 +112,32 @@ def render(charts: Sequence[Chart], path: Path, title: str = "", replace: bool =
     )
 
 
+def chart_images(charts: Sequence[Chart], fmt: Literal["svg", "png"]) -> list[bytes]:
+    """Each chart drawn on its own, as SVG (text as paths, no date, no external
+    resource: it goes inline into an HTML report) or PNG bytes."""
+    import io
+
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from matplotlib.figure import Figure
+
+    images = []
+    for chart in charts:
+        figure = Figure(figsize=(7.0, 3.6), layout="tight")
+        _draw(figure.subplots(), chart)
+        buffer = io.BytesIO()
+        with matplotlib.rc_context({"svg.hashsalt": "mdcalc", "svg.fonttype": "path"}):
+            figure.savefig(
+                buffer,
+                format=fmt,
+                dpi=120,
+                metadata={"Date": None} if fmt == "svg" else None,
+            )
+        images.append(buffer.getvalue())
+    return images
+
+
 _STYLES = {"line": "-", "dashed": "--", "dotted": ":"}
 
 

@@ -193,6 +193,104 @@ def first_non_finite(report: Report) -> str | None:
     return None
 
 
+# ----------------------------------------------------------------------------- grid
+#
+# What every text renderer (rich, plain text, HTML, Markdown) shows of a section:
+# the same header, cells and alignment, so the four never differ in content. A column
+# that no row has a value in (a Methods note no method carries, a table column of
+# dashes) is left out: a report shows only what its scene needs. JSON keeps every
+# field: its format is stable.
+
+#: Column roles: how a renderer styles a column (rich: "label" bold, "note" dim,
+#: "value" and "unit" kept on one line; HTML and Markdown: classes and alignment).
+Role = Literal["label", "value", "unit", "note", "cell", "method", "number", "error", "time"]
+
+
+@dataclass
+class Grid:
+    """A section as cells: ``header`` None for a list of labelled values."""
+
+    title: str
+    header: list[str] | None
+    rows: list[list[str]]
+    right: list[bool]  # each column right-aligned
+    roles: list[Role]
+    strong: list[bool]  # each row emphasized (the reference method)
+    kind: Literal["quantities", "table", "methods"]
+
+    def shown(self) -> Grid:
+        """This grid without the columns whose every cell is empty ("" or "—")."""
+        keep = [
+            i
+            for i in range(len(self.roles))
+            if not self.rows or any(row[i] not in ("", "—") for row in self.rows)
+        ]
+        if len(keep) == len(self.roles):
+            return self
+
+        def pick(cells: list[Any]) -> list[Any]:
+            return [cells[i] for i in keep]
+
+        header = pick(self.header) if self.header is not None else None
+        rows = [pick(row) for row in self.rows]
+        return Grid(
+            self.title, header, rows, pick(self.right), pick(self.roles), self.strong, self.kind
+        )
+
+
+@singledispatch
+def section_grid(section: Any) -> Grid:
+    raise TypeError(f"no layout for {type(section).__name__}")
+
+
+@section_grid.register
+def _(section: Quantities) -> Grid:
+    rows = [[q.label, format_value(q.value), q.unit, q.note] for q in section.items]
+    roles: list[Role] = ["label", "value", "unit", "note"]
+    right = [False, True, False, False]
+    return Grid(section.title, None, rows, right, roles, [False] * len(rows), "quantities")
+
+
+@section_grid.register
+def _(section: Table) -> Grid:
+    first = section.rows[0] if section.rows else []
+    right = [
+        not (i < len(first) and isinstance(first[i], str)) for i in range(len(section.columns))
+    ]
+    header = [f"{c.label} ({c.unit})" if c.unit else c.label for c in section.columns]
+    rows = [[format_value(v) for v in row] for row in section.rows]
+    roles: list[Role] = ["cell"] * len(section.columns)
+    return Grid(section.title, header, rows, right, roles, [False] * len(rows), "table")
+
+
+@section_grid.register
+def _(section: MethodsTable) -> Grid:
+    header, right = ["method"], [False]
+    roles: list[Role] = ["method"]
+    for q in section.quantities:
+        header += [f"{q.label} ({q.unit})" if q.unit else q.label, "rel. error"]
+        right += [True, True]
+        roles += ["number", "error"]
+    header += ["run time", "note"]
+    right += [True, False]
+    roles += ["time", "note"]
+    rows = []
+    for row in section.rows:
+        cells = [row.method]
+        for q in section.quantities:
+            cells.append(format_value(row.values.get(q.key)))
+            cells.append("reference" if row.reference else format_error(row.rel_errors.get(q.key)))
+        cells += [format_seconds(row.seconds), row.note]
+        rows.append(cells)
+    strong = [row.reference for row in section.rows]
+    return Grid(section.title, header, rows, right, roles, strong, "methods")
+
+
+def grids(report: Report) -> list[Grid]:
+    """Every section of ``report`` as the grid the renderers show."""
+    return [section_grid(section).shown() for section in report.sections]
+
+
 # ----------------------------------------------------------------------------- JSON
 
 
@@ -336,58 +434,26 @@ def _saved_row(row: MethodRow) -> dict[str, Any]:
 # ----------------------------------------------------------------------------- rich
 
 
-@singledispatch
-def section_rich(section: Any) -> Any:
-    raise TypeError(f"no rich renderer for {type(section).__name__}")
-
-
-@section_rich.register
-def _(section: Quantities) -> Any:
+def grid_rich(grid: Grid) -> Any:
+    """A rich Table of ``grid``: a heavy box with a header, or none for quantities."""
     from rich.table import Table as RichTable
 
-    table = RichTable(title=section.title, title_justify="left", show_header=False, box=None)
-    table.add_column("quantity", style="bold", no_wrap=False)
-    table.add_column("value", justify="right", no_wrap=True)
-    table.add_column("unit", no_wrap=True)
-    table.add_column("note", style="dim")
-    for q in section.items:
-        table.add_row(q.label, format_value(q.value), q.unit, q.note)
-    return table
-
-
-@section_rich.register
-def _(section: Table) -> Any:
-    from rich.table import Table as RichTable
-
-    table = RichTable(title=section.title, title_justify="left")
-    first = section.rows[0] if section.rows else []
-    for i, c in enumerate(section.columns):
-        text = i < len(first) and isinstance(first[i], str)
-        label = f"{c.label} ({c.unit})" if c.unit else c.label
-        table.add_column(label, justify="left" if text else "right")
-    for row in section.rows:
-        table.add_row(*(format_value(v) for v in row))
-    return table
-
-
-@section_rich.register
-def _(section: MethodsTable) -> Any:
-    from rich.table import Table as RichTable
-
-    table = RichTable(title=section.title, title_justify="left")
-    table.add_column("method")
-    for q in section.quantities:
-        table.add_column(f"{q.label} ({q.unit})" if q.unit else q.label, justify="right")
-        table.add_column("rel. error", justify="right")
-    table.add_column("run time", justify="right")
-    table.add_column("note", style="dim")
-    for row in section.rows:
-        cells = [f"[bold]{row.method}[/bold]" if row.reference else row.method]
-        for q in section.quantities:
-            cells.append(format_value(row.values.get(q.key)))
-            cells.append("reference" if row.reference else format_error(row.rel_errors.get(q.key)))
-        cells.append(format_seconds(row.seconds))
-        cells.append(row.note)
+    if grid.header is None:
+        table = RichTable(title=grid.title, title_justify="left", show_header=False, box=None)
+    else:
+        table = RichTable(title=grid.title, title_justify="left")
+    for i, role in enumerate(grid.roles):
+        label = grid.header[i] if grid.header is not None else role
+        table.add_column(
+            label,
+            justify="right" if grid.right[i] else "left",
+            style="bold" if role == "label" else "dim" if role == "note" else None,
+            no_wrap=grid.header is None and role in ("value", "unit"),
+        )
+    for row, strong in zip(grid.rows, grid.strong, strict=True):
+        cells = list(row)
+        if strong and grid.roles[0] == "method":
+            cells[0] = f"[bold]{cells[0]}[/bold]"
         table.add_row(*cells)
     return table
 
@@ -399,9 +465,9 @@ def render_rich(report: Report, console: Any) -> None:
     console.print(Text(report.title, style="bold underline"))
     if report.case:
         console.print(Text(f"{report.problem} · {report.case}", style="dim"))
-    for section in report.sections:
+    for grid in grids(report):
         console.print()
-        console.print(section_rich(section))
+        console.print(grid_rich(grid))
     if report.notes:
         console.print()
         for note in report.notes:
@@ -530,47 +596,6 @@ def _plain_table(
     return out
 
 
-@singledispatch
-def section_plain(section: Any, width: int) -> list[str] | None:
-    return None
-
-
-@section_plain.register
-def _(section: Quantities, width: int) -> list[str] | None:
-    rows = [[q.label, format_value(q.value), q.unit, q.note] for q in section.items]
-    return _plain_table(section.title, None, rows, [False, True, False, False], False, width)
-
-
-@section_plain.register
-def _(section: Table, width: int) -> list[str] | None:
-    first = section.rows[0] if section.rows else []
-    right = [
-        not (i < len(first) and isinstance(first[i], str)) for i in range(len(section.columns))
-    ]
-    header = [f"{c.label} ({c.unit})" if c.unit else c.label for c in section.columns]
-    rows = [[format_value(v) for v in row] for row in section.rows]
-    return _plain_table(section.title, header, rows, right, True, width)
-
-
-@section_plain.register
-def _(section: MethodsTable, width: int) -> list[str] | None:
-    header, right = ["method"], [False]
-    for q in section.quantities:
-        header += [f"{q.label} ({q.unit})" if q.unit else q.label, "rel. error"]
-        right += [True, True]
-    header += ["run time", "note"]
-    right += [True, False]
-    rows = []
-    for row in section.rows:
-        cells = [row.method]
-        for q in section.quantities:
-            cells.append(format_value(row.values.get(q.key)))
-            cells.append("reference" if row.reference else format_error(row.rel_errors.get(q.key)))
-        cells += [format_seconds(row.seconds), row.note]
-        rows.append(cells)
-    return _plain_table(section.title, header, rows, right, True, width)
-
-
 def render_plain(report: Report, width: int) -> str | None:
     """The text :func:`render_rich` prints on a colourless console ``width`` wide, or
     None where only rich can lay the report out (see above)."""
@@ -589,8 +614,9 @@ def render_plain(report: Report, width: int) -> str | None:
         return None
     if report.case and not text(f"{report.problem} · {report.case}"):
         return None
-    for section in report.sections:
-        lines = section_plain(section, width)
+    for grid in grids(report):
+        boxed = grid.header is not None
+        lines = _plain_table(grid.title, grid.header, grid.rows, grid.right, boxed, width)
         if lines is None:
             return None
         out.append("")

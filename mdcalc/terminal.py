@@ -6,6 +6,8 @@ from __future__ import annotations
 import sys
 from typing import Any
 
+from mdcalc.errors import STATUS_OF_EXIT
+
 
 def stdout_console(stderr: bool = False) -> Any:
     from rich.console import Console
@@ -44,8 +46,6 @@ def print_run_summary(
     table = Table()
     table.add_column("status")
     table.add_column("files", justify="right")
-    from mdcalc.batch import STATUS_OF_EXIT
-
     for status in STATUS_OF_EXIT.values():
         table.add_row(status, str(counts[status]))
     console = stdout_console(stderr=stderr)
@@ -97,6 +97,18 @@ def progress(total: int | None) -> Progress:
     return Progress(total)
 
 
+def status_counts(status: Any) -> str:
+    """ "points: 9,990 ok, 10 no-answer": how many points ended how, worst last."""
+    import numpy as np
+
+    codes, counts = np.unique(np.asarray(status), return_counts=True)
+    parts = [
+        f"{count:,} {STATUS_OF_EXIT.get(int(code), str(code))}"
+        for code, count in zip(codes.tolist(), counts.tolist(), strict=True)
+    ]
+    return "points: " + ", ".join(parts)
+
+
 def print_sweep(table: Any, points: int, how: str) -> None:
     from rich.table import Table
 
@@ -111,10 +123,11 @@ def print_sweep(table: Any, points: int, how: str) -> None:
         for key in table.keys:
             unit = table.units.get(key, "")
             rich_table.add_column(f"{key} ({unit})" if unit else key, justify="right")
-        rich_table.add_column("status", justify="right")
+        rich_table.add_column("status")
         for index in range(points):
             cells = [format_value(float(table.columns[k][index]), 6) for k in table.keys]
-            rich_table.add_row(*[c if c != "nan" else "—" for c in cells], str(table.status[index]))
+            status = STATUS_OF_EXIT.get(int(table.status[index]), str(table.status[index]))
+            rich_table.add_row(*[c if c != "nan" else "—" for c in cells], status)
         console.print(rich_table)
         return
     rich_table = Table(title=f"Sweep: {points} points, {how}; range of each column")
@@ -123,6 +136,7 @@ def print_sweep(table: Any, points: int, how: str) -> None:
     for row in summary_rows(table):
         rich_table.add_row(*row)
     console.print(rich_table)
+    console.print(status_counts(table.status))
     console.print(
         "write every point with --out FILE.csv or FILE.json; pick columns with --result KEY",
         style="dim",

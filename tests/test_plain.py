@@ -33,6 +33,7 @@ from mdcalc.report import (
 )
 from mdcalc.runner import solve_text
 from tests.conftest import CASES, run_script
+from tests.test_document import assert_no_empty_column
 
 WIDTH = 140
 
@@ -56,6 +57,7 @@ def test_shipped_case_plain_text_is_riches_text(path: Path):
     plain = render_plain(report, WIDTH)
     if plain is not None:
         assert plain == rich_text(report)
+    assert_no_empty_column(report)  # issue 23: a report shows only what its scene needs
 
 
 def test_most_shipped_cases_take_the_plain_path():

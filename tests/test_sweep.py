@@ -620,3 +620,17 @@ def test_float_key_written_as_an_integer_takes_fractional_steps(cli, tmp_path):
     assert [float(r["vehicle.mass"]) for r in rows] == pytest.approx(
         [1000, 4000 / 3, 5000 / 3, 2000]
     )
+
+
+def test_the_printed_status_says_ok_or_no_answer_as_run_does(cli):
+    # M_c = m·g·r/(i·η) = 79.15 N·m at 1000 kg is more than the motor starts with
+    # (cases/hoist/cannot_start.toml); 100, 400 and 700 kg start.
+    case = CASES / "hoist" / "cannot_start.toml"
+    table = cli("sweep", case, "--vary", "load.mass=100:1000:4", "--result", "static_torque")
+    assert table.exit_code == 3, table.stderr
+    rows = [line for line in table.stdout.splitlines() if line.startswith("│")]
+    assert [row.split("│")[-2].strip() for row in rows] == ["ok", "ok", "ok", "no-answer"]
+    # No start from 75 N·m / (79.1469 N·m / 1000 kg) = 947.6 kg on: of 100 + 4.5·k kg,
+    # k = 189 ... 200, twelve points.
+    ranges = cli("sweep", case, "--vary", "load.mass=100:1000:201")
+    assert "points: 189 ok, 12 no-answer" in ranges.stdout

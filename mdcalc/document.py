@@ -1,0 +1,400 @@
+"""Calculation reports an engineer can file: ``--report FILE.html`` or ``FILE.md``.
+
+One document of the same :class:`~mdcalc.report.Report` the terminal shows, laid
+out from the same grids (:func:`mdcalc.report.grids`: the header, cells and
+alignment rich prints, all-empty columns left out), with what a reviewer needs
+around it: the case file's name and SHA-256, mdcalc's version and the date, the
+inputs as written and as computed with, the notes and warnings set apart before the
+results, and the problem's charts (inline SVG in HTML; PNG files beside the
+Markdown, linked). The HTML loads nothing from a network (no script, font or style
+sheet from elsewhere) and prints on A4.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import html
+from dataclasses import dataclass, field
+from datetime import UTC, datetime
+from pathlib import Path
+from typing import Any
+
+from mdcalc import __version__
+from mdcalc.casefile import dotted, unit_of
+from mdcalc.errors import InputError, Problem
+from mdcalc.report import Grid, Report, format_value, grids
+
+#: The report formats, by file suffix.
+FORMATS = (".html", ".md")
+#: Case-file keys that are not inputs of the scene.
+NOT_INPUTS = ("problem", "title", "expect", "saved")
+#: Headers of a list of labelled values (its grid has none), by column role.
+QUANTITY_HEADERS = {"label": "quantity", "value": "value", "unit": "unit", "note": "note"}
+
+
+@dataclass
+class Document:
+    """Everything a filed report shows, rendered by :func:`to_html` or :func:`to_markdown`."""
+
+    report: Report
+    case_name: str
+    sha256: str
+    date: str
+    #: (key, as written, as computed with, unit) of every input value.
+    inputs: list[tuple[str, str, str, str]]
+    charts: list[Any] = field(default_factory=list)  # plot.Chart
+    version: str = __version__
+
+
+def document_of(run: Any, when: datetime | None = None) -> Document:
+    """The document of a finished run (:class:`mdcalc.runner.Run`)."""
+    case = run.case
+    digest = hashlib.sha256(case.text.encode("utf-8")).hexdigest()
+    stamp = (when or datetime.now(UTC)).strftime("%Y-%m-%d %H:%M UTC")
+    make = getattr(run.module, "charts", None)
+    charts = list(make(run.result)) if make is not None and run.result is not None else []
+    return Document(
+        run.report, case.path.name, digest, stamp, inputs_of(run.module.Case, case), charts
+    )
+
+
+def inputs_of(model: Any, case: Any) -> list[tuple[str, str, str, str]]:
+    """Every value of the case file (lists item by item), as written and as the
+    solver took it: a quantity string ("1500 kg") converted to the field's unit."""
+    converted = {c.loc: c for c in case.conversions}
+    rows: list[tuple[str, str, str, str]] = []
+
+    def walk(value: Any, loc: tuple[str | int, ...]) -> None:
+        if isinstance(value, dict):
+            for key, item in value.items():
+                walk(item, (*loc, key))
+        elif isinstance(value, list) and any(isinstance(v, dict | list) for v in value):
+            for index, item in enumerate(value):
+                walk(item, (*loc, index))
+        elif isinstance(value, list):
+            for index, item in enumerate(value):
+                leaf(item, (*loc, index))
+        else:
+            leaf(value, loc)
+
+    def leaf(value: Any, loc: tuple[str | int, ...]) -> None:
+        written = _written(case, loc, value)
+        conversion = converted.get(loc)
+        used = format_value(conversion.value, 8) if conversion is not None else written
+        unit = conversion.unit if conversion is not None else unit_of(model, loc)
+        rows.append((dotted(loc), written, used, unit))
+
+    for key, value in case.data.items():
+        if key not in NOT_INPUTS:
+            walk(value, (key,))
+    return rows
+
+
+def _written(case: Any, loc: tuple[str | int, ...], value: Any) -> str:
+    """The value's text in the case file (``1e11``, ``10_000``) where it stands alone on
+    its key's line; else the value as TOML writes it."""
+    if isinstance(value, str) or not isinstance(loc[-1], str):
+        return _toml_text(value)
+    line = case.line_of(loc)
+    lines = case.text.splitlines()
+    if line is None or not 0 < line <= len(lines):
+        return _toml_text(value)
+    key, equals, rest = lines[line - 1].partition("=")
+    text = rest.split("#")[0].strip()
+    if equals and key.split(".")[-1].strip().strip("\"'") == loc[-1] and text:
+        if text[0] not in "[{\"'":
+            return text
+    return _toml_text(value)
+
+
+def _toml_text(value: Any) -> str:
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, str):
+        return value
+    return repr(value) if isinstance(value, float) else str(value)
+
+
+def _headers(grid: Grid) -> list[str]:
+    return grid.header if grid.header is not None else [QUANTITY_HEADERS[r] for r in grid.roles]
+
+
+# ----------------------------------------------------------------------------- HTML
+
+STYLE = """
+@page { size: A4; margin: 16mm 14mm; }
+body { font: 10.5pt/1.4 "DejaVu Sans", "Helvetica Neue", Arial, sans-serif; color: #111;
+       max-width: 60em; margin: 1.5em auto; padding: 0 1em; }
+h1 { font-size: 1.5em; margin: 0 0 .4em; }
+h2 { font-size: 1.1em; margin: 1.4em 0 .4em; border-bottom: 1px solid #bbb; }
+table { border-collapse: collapse; margin: .3em 0 .8em; font-variant-numeric: tabular-nums; }
+th, td { border: 1px solid #ccc; padding: .2em .55em; vertical-align: top; }
+th { background: #f0f0f0; text-align: left; font-weight: 600; }
+td.r, th.r { text-align: right; white-space: nowrap; }
+td.col-note { color: #555; font-size: .92em; }
+tr.reference td { font-weight: 600; background: #fafaf0; }
+table.meta th { width: 8em; }
+table.meta td code { font-size: .85em; word-break: break-all; }
+.notes { margin: 1em 0; }
+.note { border-left: 4px solid #3a7bd5; background: #eef4fc; padding: .45em .8em; margin: .4em 0; }
+.note.warning { border-color: #d08a00; background: #fff5df; }
+.note.noanswer { border-color: #c0392b; background: #fdecea; font-weight: 600; }
+figure { margin: .6em 0 1.2em; break-inside: avoid; }
+figure svg { max-width: 100%; height: auto; }
+figcaption { font-size: .9em; color: #444; }
+footer { margin-top: 2em; font-size: .85em; color: #666; border-top: 1px solid #ddd; }
+@media print {
+  body { max-width: none; margin: 0; padding: 0; }
+  h2 { break-after: avoid; }
+  table, tr, .note { break-inside: avoid; }
+}
+"""
+
+
+def to_html(document: Document, svgs: list[str] | None = None, missing: str = "") -> str:
+    """One self-contained HTML page; ``svgs``: the charts drawn as SVG text, in
+    order; ``missing``: why they are not there (no matplotlib)."""
+    report, e = document.report, html.escape
+    out = [
+        "<!DOCTYPE html>",
+        '<html lang="en">',
+        '<head><meta charset="utf-8">',
+        f"<title>{e(report.title)}</title>",
+        f"<style>{STYLE}</style></head>",
+        "<body>",
+        f"<header><h1>{e(report.title)}</h1>",
+        '<table class="meta">',
+    ]
+    for label, value in _meta(document):
+        out.append(f"<tr><th>{e(label)}</th><td>{value}</td></tr>")
+    out.append("</table></header>")
+    notes = _notes(document)
+    if notes:
+        out.append('<section class="notes">')
+        for level, text in notes:
+            out.append(f'<div class="note {level}"><strong>{e(level)}:</strong> {e(text)}</div>')
+        out.append("</section>")
+    if document.inputs:
+        out.append('<section class="inputs"><h2>Inputs</h2>')
+        rows = [list(row) for row in document.inputs]
+        header = ["key", "as written", "as computed with", "unit"]
+        out.append(_html_table(header, rows, [False] * 4, [], "inputs"))
+        out.append("</section>")
+    for grid in grids(report):
+        out.append(f'<section class="{grid.kind}"><h2>{e(grid.title)}</h2>')
+        classes = [
+            f"col-{role}{' r' if right else ''}"
+            for role, right in zip(grid.roles, grid.right, strict=True)
+        ]
+        out.append(
+            _html_table(_headers(grid), grid.rows, grid.right, grid.strong, grid.kind, classes)
+        )
+        out.append("</section>")
+    if document.charts:
+        out.append('<section class="charts"><h2>Charts</h2>')
+        if svgs is None:
+            out.append(f'<div class="note warning"><strong>charts:</strong> {e(missing)}</div>')
+        else:
+            for chart, svg in zip(document.charts, svgs, strict=True):
+                out.append(
+                    f"<figure>{_inline_svg(svg)}<figcaption>{e(chart.title)}</figcaption></figure>"
+                )
+        out.append("</section>")
+    out.append(
+        f"<footer>mdcalc {e(document.version)} · {e(report.problem)} · "
+        f"{e(document.case_name)} · {e(document.date)}</footer>"
+    )
+    out.append("</body></html>")
+    return "\n".join(out) + "\n"
+
+
+def _meta(document: Document) -> list[tuple[str, str]]:
+    e, report = html.escape, document.report
+    return [
+        ("problem", e(report.problem)),
+        ("case file", e(document.case_name)),
+        ("SHA-256", f"<code>{document.sha256}</code>"),
+        ("mdcalc", e(document.version)),
+        ("date", e(document.date)),
+        ("status", "ok" if report.status == "ok" else "no answer"),
+    ]
+
+
+def _notes(document: Document) -> list[tuple[str, str]]:
+    """The notes and warnings, and why there is no answer or a method was cut."""
+    report = document.report
+    ordered = sorted(report.notes, key=lambda n: n.level != "warning")  # warnings first
+    notes: list[tuple[str, str]] = [(n.level, n.text) for n in ordered]
+    notes += [("warning", f"time budget: {cut}") for cut in report.cut]
+    if report.status != "ok":
+        notes.insert(0, ("noanswer", f"no answer: {report.message}"))
+    return notes
+
+
+def _html_table(
+    header: list[str],
+    rows: list[list[str]],
+    right: list[bool],
+    strong: list[bool],
+    kind: str,
+    classes: list[str] | None = None,
+) -> str:
+    e = html.escape
+    classes = classes or ["r" if r else "" for r in right]
+    head = "".join(f'<th class="{c}">{e(h)}</th>' for h, c in zip(header, classes, strict=True))
+    body = []
+    for index, row in enumerate(rows):
+        mark = ' class="reference"' if index < len(strong) and strong[index] else ""
+        cells = "".join(f'<td class="{c}">{e(v)}</td>' for v, c in zip(row, classes, strict=True))
+        body.append(f"<tr{mark}>{cells}</tr>")
+    return (
+        f'<table class="{kind}"><thead><tr>{head}</tr></thead>'
+        f"<tbody>{''.join(body)}</tbody></table>"
+    )
+
+
+def _inline_svg(svg: str) -> str:
+    """matplotlib's SVG file as an element of the page: no XML prolog or DOCTYPE."""
+    start = svg.find("<svg")
+    return svg[start:] if start >= 0 else svg
+
+
+# ------------------------------------------------------------------------- Markdown
+
+
+def to_markdown(document: Document, images: list[str] | None = None, missing: str = "") -> str:
+    """GitHub-flavoured Markdown (pipe tables); ``images``: the charts' PNG file
+    names beside the document, in order."""
+    report = document.report
+    out = [f"# {_md(report.title)}", ""]
+    out += _md_table(["", ""], [[label, _plain(value)] for label, value in _meta(document)])
+    for level, text in _notes(document):
+        title = {"noanswer": "No answer", "warning": "Warning", "info": "Note"}[level]
+        out += [f"> **{title}:** {_md(text)}", ""]
+    if document.inputs:
+        out += ["## Inputs", ""]
+        header = ["key", "as written", "as computed with", "unit"]
+        out += _md_table(header, [list(row) for row in document.inputs])
+    for grid in grids(report):
+        out += [f"## {_md(grid.title)}", ""]
+        out += _md_table(_headers(grid), grid.rows, grid.right, grid.strong)
+    if document.charts:
+        out += ["## Charts", ""]
+        if images is None:
+            out += [f"> **Charts:** {_md(missing)}", ""]
+        else:
+            for chart, name in zip(document.charts, images, strict=True):
+                out += [f"![{_md(chart.title)}]({name})", ""]
+    out.append(
+        f"*mdcalc {document.version} · {report.problem} · {_md(document.case_name)} · "
+        f"{document.date}*"
+    )
+    return "\n".join(out) + "\n"
+
+
+def _md(text: str) -> str:
+    """Text safe in a Markdown table cell or line: pipes and markup escaped."""
+    out = text.replace("\\", "\\\\")
+    for char in "|*_`[]<>":
+        out = out.replace(char, "\\" + char)
+    return out.replace("\n", " ")
+
+
+def _plain(value: str) -> str:
+    """A meta value without its HTML (``<code>`` around the hash)."""
+    return html.unescape(value.replace("<code>", "").replace("</code>", ""))
+
+
+def _md_table(
+    header: list[str],
+    rows: list[list[str]],
+    right: list[bool] | None = None,
+    strong: list[bool] | None = None,
+) -> list[str]:
+    """A pipe table; the first cell of a ``strong`` row (the reference) in bold."""
+    right = right or [False] * len(header)
+    lines = ["| " + " | ".join(_md(h) for h in header) + " |"]
+    lines.append("|" + "|".join("---:" if r else "---" for r in right) + "|")
+    for index, row in enumerate(rows):
+        cells = [_md(cell) for cell in row]
+        if strong and strong[index] and cells and cells[0]:
+            cells[0] = f"**{cells[0]}**"
+        lines.append("| " + " | ".join(cells) + " |")
+    return [*lines, ""]
+
+
+# -------------------------------------------------------------------------- writing
+
+
+def check_path(path: Path) -> str | None:
+    """Why ``--report`` cannot write ``path`` (its suffix), or None."""
+    if path.suffix.lower() not in FORMATS:
+        return f"--report: use a file ending {' or '.join(FORMATS)}"
+    return None
+
+
+def chart_files(path: Path, count: int) -> list[Path]:
+    """The PNG files of a Markdown report's charts: beside it, named after it."""
+    return [path.with_name(f"{path.stem}-{index}.png") for index in range(1, count + 1)]
+
+
+def write(run: Any, path: Path, force: bool) -> list[Path]:
+    """Write the report of ``run`` to ``path`` (.html or .md; for Markdown its chart
+    PNGs beside it), atomically; an existing file only with ``force``. Returns the
+    files written."""
+    from mdcalc.files import write_atomic
+    from mdcalc.plot import chart_images, matplotlib_missing
+
+    document = document_of(run)
+    missing = matplotlib_missing() if document.charts else None
+    why = (missing or "").replace("--plot needs", "the charts need")
+    markdown = path.suffix.lower() == ".md"
+    pictures = chart_files(path, len(document.charts)) if markdown and not missing else []
+    if not force:
+        for picture in pictures:
+            if picture.exists():
+                raise InputError(
+                    picture, [Problem("--report: file exists; use --force to overwrite it")]
+                )
+    if markdown:
+        images = chart_images(document.charts, "png") if pictures else []
+        for picture, image in zip(pictures, images, strict=True):
+            write_atomic(picture, image, replace=True, option="--report: ")
+        names = [p.name for p in pictures] if not missing else None
+        text = to_markdown(document, names, why)
+    else:
+        text = html_of(document)
+    write_atomic(path, text, replace=force, option="--report: ")
+    return [*pictures, path]
+
+
+def html_of(document: Document) -> str:
+    """The HTML page of ``document`` with its charts drawn (when matplotlib is there)."""
+    from mdcalc.plot import chart_images, matplotlib_missing
+
+    missing = matplotlib_missing() if document.charts else None
+    if missing:
+        return to_html(document, None, missing.replace("--plot needs", "the charts need"))
+    svgs = [image.decode("utf-8") for image in chart_images(document.charts, "svg")]
+    return to_html(document, svgs)
+
+
+def index_html(rows: list[tuple[str, str, str, str, str]]) -> str:
+    """The page of a batch's reports (``run --report-dir``): one row per case file,
+    (case, problem, title, status, report file name or "")."""
+    e = html.escape
+    body = []
+    for case, problem, title, status, link in rows:
+        name = f'<a href="{e(link)}">{e(case)}</a>' if link else e(case)
+        body.append(
+            f'<tr class="{e(status)}"><td>{name}</td><td>{e(problem)}</td>'
+            f"<td>{e(title)}</td><td>{e(status)}</td></tr>"
+        )
+    return (
+        '<!DOCTYPE html>\n<html lang="en">\n<head><meta charset="utf-8">'
+        f"<title>mdcalc reports</title><style>{STYLE}</style></head>\n<body>\n"
+        f"<h1>mdcalc reports</h1>\n<p>{len(rows)} case files · mdcalc {__version__}</p>\n"
+        '<table class="index"><thead><tr><th>case file</th><th>problem</th><th>title</th>'
+        f"<th>status</th></tr></thead><tbody>{''.join(body)}</tbody></table>\n"
+        "</body></html>\n"
+    )

@@ -1,0 +1,314 @@
+"""Calculation reports (``--report FILE.html|.md``, issue 23): the same content as the
+JSON, charts inline (SVG) or beside (PNG), nothing loaded from a network, the file
+rules of --save; and no renderer prints a column that is empty in every row."""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import re
+from html.parser import HTMLParser
+from pathlib import Path
+
+import pytest
+
+from mdcalc.report import Report, format_value, grids, render_rich
+from tests.conftest import CASES
+
+CRANE = CASES / "hoist" / "crane.toml"  # two charts
+LECTURE = CASES / "braking" / "lecture.toml"  # a warning note, Methods tables
+UNITS = CASES / "coupling" / "example_8_1_units.toml"  # quantity strings
+NO_START = CASES / "hoist" / "cannot_start.toml"  # no answer
+
+
+class Page(HTMLParser):
+    """The tables (cells as text), SVG elements, resource links and text of a page."""
+
+    def __init__(self) -> None:
+        super().__init__(convert_charrefs=True)
+        self.tables: list[list[list[str]]] = []
+        self.svgs = 0
+        self.links: list[str] = []
+        self.tags: list[str] = []
+        self.text: list[str] = []
+        self._cell: list[str] | None = None
+
+    def handle_starttag(self, tag: str, attrs: list[tuple[str, str | None]]) -> None:
+        self.tags.append(tag)
+        if tag == "table":
+            self.tables.append([])
+        elif tag == "tr":
+            self.tables[-1].append([])
+        elif tag in ("td", "th"):
+            self._cell = []
+        elif tag == "svg":
+            self.svgs += 1
+        for name, value in attrs:
+            if name in ("src", "href", "xlink:href", "action", "data") and value:
+                self.links.append(value)
+
+    def handle_endtag(self, tag: str) -> None:
+        if tag in ("td", "th") and self._cell is not None:
+            self.tables[-1][-1].append("".join(self._cell).strip())
+            self._cell = None
+
+    def handle_data(self, data: str) -> None:
+        self.text.append(data)
+        if self._cell is not None:
+            self._cell.append(data)
+
+
+def page(text: str) -> Page:
+    parsed = Page()
+    parsed.feed(text)
+    parsed.close()
+    return parsed
+
+
+def markdown_tables(text: str) -> list[list[list[str]]]:
+    """Every pipe table as a Markdown parser reads it (markdown-it, GFM tables)."""
+    from markdown_it import MarkdownIt
+
+    tokens = MarkdownIt("commonmark").enable("table").parse(text)
+    tables: list[list[list[str]]] = []
+    for token in tokens:
+        if token.type == "table_open":
+            tables.append([])
+        elif token.type == "tr_open":
+            tables[-1].append([])
+        elif token.type == "inline" and tables and tables[-1] and _in_cell(tokens, token):
+            tables[-1][-1].append(_inline_text(token))
+    return tables
+
+
+def _in_cell(tokens, token) -> bool:
+    index = tokens.index(token)
+    return index > 0 and tokens[index - 1].type in ("th_open", "td_open")
+
+
+def _inline_text(token) -> str:
+    return "".join(child.content for child in token.children or [] if child.type == "text")
+
+
+def _report(cli, tmp_path: Path, case: Path, suffix: str, *more: str) -> tuple[str, dict]:
+    out = tmp_path / f"report{suffix}"
+    done = cli(_problem(case), case, "--report", out)
+    assert done.exit_code in (0, 3), done.stderr
+    assert f"wrote {out}" in done.stderr
+    document = json.loads(cli(_problem(case), case, "--json", *more).stdout)
+    return out.read_text(encoding="utf-8"), document
+
+
+def _problem(case: Path) -> str:
+    import tomllib
+
+    return tomllib.loads(case.read_text(encoding="utf-8"))["problem"]
+
+
+def _shown(value) -> str:
+    return format_value(value)
+
+
+@pytest.mark.parametrize("case", [CRANE, LECTURE, UNITS, NO_START], ids=lambda p: p.name)
+def test_the_html_report_holds_what_the_json_holds(cli, tmp_path, case):
+    text, document = _report(cli, tmp_path, case, ".html")
+    html = page(text)
+    cells = {cell for table in html.tables for row in table for cell in row}
+    words = " ".join(html.text)
+    assert document["title"] in words
+    assert hashlib.sha256(case.read_bytes()).hexdigest() in cells
+    for key, result in document["results"].items():
+        assert result["label"] in cells, key
+        assert _shown(result["value"]) in cells, key
+        if result["unit"]:
+            assert result["unit"] in cells, key
+    for section in document["sections"]:
+        assert section["title"] in words
+        if section["kind"] == "methods":
+            for row in section["rows"]:
+                assert row["method"] in cells
+                for value in row["values"].values():
+                    assert _shown(value) in cells
+    for note in document["notes"]:
+        assert note["text"] in words
+    if document["status"] != "ok":
+        assert f"no answer: {document['message']}" in words
+    assert "<script" not in text and "@import" not in text
+
+
+def test_html_charts_are_inline_svg_and_nothing_comes_from_a_network(cli, tmp_path):
+    from mdcalc.casefile import read_case
+    from mdcalc.problems import PROBLEMS
+    from mdcalc.runner import solve_text
+
+    text, _ = _report(cli, tmp_path, CRANE, ".html")
+    html = page(text)
+    run = solve_text(read_case(CRANE))
+    charts = PROBLEMS["hoist"].load().charts(run.result)
+    assert len(charts) == 2
+    assert html.svgs == len(charts)
+    # Links only inside the page (an SVG's own #ids); no url() to fetch.
+    assert all(link.startswith("#") for link in html.links), html.links[:5]
+    assert not re.search(r"url\(\s*['\"]?(https?:|//)", text)
+    assert not re.search(r"<(link|img|iframe|object|embed)\b", text)
+    assert "@page { size: A4" in text  # prints on A4
+
+
+def test_markdown_tables_read_back_with_the_same_cells(cli, tmp_path):
+    from mdcalc.runner import run_case
+
+    text, _ = _report(cli, tmp_path, LECTURE, ".md")
+    tables = markdown_tables(text)
+    report = run_case(LECTURE)
+    expected = grids(report)
+    # The meta table, the inputs, then one table per section in order.
+    assert len(tables) == 2 + len(expected)
+    assert tables[0][3] == ["SHA-256", hashlib.sha256(LECTURE.read_bytes()).hexdigest()]
+    for table, grid in zip(tables[2:], expected, strict=True):
+        rows = table[1:]
+        assert len(rows) == len(grid.rows), grid.title
+        timed = grid.roles.index("time") if "time" in grid.roles else None
+        for got, want in zip(rows, grid.rows, strict=True):
+            if timed is not None:  # run times differ between two runs
+                got, want = got[:timed] + got[timed + 1 :], want[:timed] + want[timed + 1 :]
+            assert got == want, grid.title
+
+
+def test_markdown_charts_are_pngs_beside_it(cli, tmp_path):
+    text, _ = _report(cli, tmp_path, CRANE, ".md")
+    names = re.findall(r"!\[[^\]]*\]\(([^)]+)\)", text)
+    assert names == ["report-1.png", "report-2.png"]
+    assert not re.search(r"\]\(\s*(https?:|//)|<(img|script|link)\b", text)  # nothing remote
+    for name in names:
+        assert (tmp_path / name).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_inputs_as_written_and_as_computed_with(cli, tmp_path):
+    text, _ = _report(cli, tmp_path, UNITS, ".md")
+    inputs = markdown_tables(text)[1]
+    assert inputs[0] == ["key", "as written", "as computed with", "unit"]
+    rows = {row[0]: row for row in inputs[1:]}
+    # As the case file writes them, and in the field's unit (4000 g·m² is 4 kg·m²).
+    assert rows["coupling.driven_inertia"][1:] == ["4000 g*m**2", "4", "kg·m^2"]
+    assert rows["coupling.absorption"][1:] == ["0.63", "0.63", ""]
+    # 52.5 N*m/deg in N·m/rad: 52.5 · 180/π (the case file's stiffness).
+    stiffness = [r for k, r in rows.items() if "deg" in r[1]]
+    assert [row[0] for row in stiffness] == ["coupling.stiffness"]
+    for row in stiffness:
+        value = float(row[1].split()[0])
+        assert float(row[2]) == pytest.approx(value * 180 / 3.141592653589793, rel=1e-7)
+
+
+@pytest.mark.parametrize(
+    ("name", "problem"),
+    [
+        ("report.pdf", "use a file ending .html or .md"),
+        ("", "is a folder; give a file name"),
+    ],
+)
+def test_bad_report_paths_are_exit_2_before_solving(cli, tmp_path, name, problem):
+    target = tmp_path / name if name else tmp_path
+    done = cli("braking", LECTURE, "--report", target)
+    assert done.exit_code == 2
+    assert problem in done.stderr and "Traceback" not in done.stderr
+
+
+def test_an_existing_report_needs_force_and_so_do_its_pictures(cli, tmp_path):
+    out = tmp_path / "report.html"
+    out.write_text("old")
+    done = cli("braking", LECTURE, "--report", out)
+    assert done.exit_code == 2 and "--force" in done.stderr
+    assert out.read_text() == "old"
+    assert cli("braking", LECTURE, "--report", out, "--force").exit_code == 0
+    assert out.read_text().startswith("<!DOCTYPE html>")
+    (tmp_path / "crane-2.png").write_bytes(b"mine")
+    done = cli("hoist", CRANE, "--report", tmp_path / "crane.md")
+    assert done.exit_code == 2 and "crane-2.png" in done.stderr
+    assert (tmp_path / "crane-2.png").read_bytes() == b"mine"
+    assert not (tmp_path / "crane.md").exists()
+
+
+# ------------------------------------------------------- no column empty in every row
+
+
+def _rich_columns(text: str) -> list[list[str]]:
+    """The columns of every boxed table rich printed, as the text of their cells."""
+    columns: list[list[str]] = []
+    table: list[list[str]] = []
+    for line in [*text.splitlines(), ""]:
+        if line.startswith(("┃", "│")):
+            table.append([cell.strip() for cell in line.rstrip()[1:-1].split(line[0])])
+        elif line.startswith(("┏", "┡", "└")):
+            continue  # the box's rules
+        elif table:
+            width = len(table[0])
+            columns += [[row[i] for row in table if len(row) == width] for i in range(width)]
+            table = []
+    return columns
+
+
+def assert_no_empty_column(report: Report) -> None:
+    """No renderer shows a column that no row has a value in (rich, HTML, Markdown)."""
+    import io
+
+    from rich.console import Console
+
+    from mdcalc.document import Document, to_html, to_markdown
+
+    for grid in grids(report):
+        for index in range(len(grid.roles)):
+            assert any(row[index] not in ("", "—") for row in grid.rows), grid.title
+    buffer = io.StringIO()
+    render_rich(report, Console(file=buffer, width=400, highlight=False))
+    for column in _rich_columns(buffer.getvalue()):
+        assert any(cell not in ("", "—") for cell in column[1:]), column[0]
+    document = Document(report, "case.toml", "0" * 64, "today", [])
+    for table in page(to_html(document)).tables[1:]:
+        for index in range(len(table[0])):
+            assert any(row[index] not in ("", "—") for row in table[1:]), table[0][index]
+    for table in markdown_tables(to_markdown(document))[1:]:
+        for index in range(len(table[0])):
+            assert any(row[index] not in ("", "—") for row in table[1:]), table[0][index]
+
+
+def test_a_methods_note_no_method_has_is_not_a_column():
+    from mdcalc.report import MethodQuantity, MethodRow, MethodsTable
+
+    table = MethodsTable(
+        "Methods",
+        "m",
+        [MethodQuantity("x", "x", "m")],
+        [MethodRow("exact", {"x": 1.0}, {}, 1e-6, True), MethodRow("rough", {"x": 1.1}, {}, 2e-6)],
+    )
+    report = Report("braking", "t", sections=[table])
+    (grid,) = grids(report)
+    assert grid.header == ["method", "x (m)", "rel. error", "run time"]
+    assert_no_empty_column(report)
+    table.rows[1].note = "a note"
+    assert grids(report)[0].header == ["method", "x (m)", "rel. error", "run time", "note"]
+
+
+def test_run_writes_a_report_per_file_and_an_index(cli, tmp_path):
+    cases = tmp_path / "cases"
+    cases.mkdir()
+    for case in (LECTURE, NO_START):
+        (cases / case.name).write_bytes(case.read_bytes())
+    (cases / "broken.toml").write_text('problem = "braking"\n[vehicle\n')
+    out = tmp_path / "reports"
+    done = cli("run", cases, "--report-dir", out, "--jobs", "1")
+    assert done.exit_code == 2, done.stderr  # the worst file: bad input
+    index = page((out / "index.html").read_text(encoding="utf-8"))
+    rows = {row[0]: row for row in index.tables[0][1:]}
+    assert [
+        rows[str(cases / n)][3] for n in ("broken.toml", "cannot_start.toml", "lecture.toml")
+    ] == [
+        "input-error",
+        "no-answer",
+        "ok",
+    ]
+    assert sorted(index.links) == ["cannot_start.html", "lecture.html"]
+    lecture = page((out / "lecture.html").read_text(encoding="utf-8"))
+    assert hashlib.sha256(LECTURE.read_bytes()).hexdigest() in {
+        cell for table in lecture.tables for row in table for cell in row
+    }
+    assert "no answer" in " ".join(page((out / "cannot_start.html").read_text()).text)
