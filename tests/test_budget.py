@@ -90,6 +90,32 @@ def test_the_alarm_does_not_raise_inside_a_finalizer(monkeypatch):
     assert swallowed == []
 
 
+@pytest.mark.skipif(not hasattr(signal, "setitimer"), reason="POSIX alarms")
+def test_the_alarm_does_not_raise_inside_a_garbage_collector_callback(monkeypatch):
+    # hypothesis times the collector with a gc callback; one that runs past the
+    # deadline must not get the OverBudget (it would be swallowed and printed).
+    import gc
+
+    swallowed: list[object] = []
+    monkeypatch.setattr("sys.unraisablehook", swallowed.append)
+
+    def slow_callback(phase: str, info: dict) -> None:
+        if phase == "start":
+            spin(0.3)
+
+    gc.callbacks.append(slow_callback)
+    try:
+        start = time.perf_counter()
+        with pytest.raises(budget.OverBudget), budget.limit(0.05):
+            gc.collect()
+            assert time.perf_counter() - start >= 0.3
+            spin(5.0)
+    finally:
+        gc.callbacks.remove(slow_callback)
+    assert time.perf_counter() - start < 0.7
+    assert swallowed == []
+
+
 def test_a_finished_limit_leaves_no_alarm_behind():
     with budget.limit(0.05):
         pass

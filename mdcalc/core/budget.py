@@ -143,9 +143,13 @@ _FINALIZERS = frozenset({"__del__", "unraisablehook", "unraisable_hook", "except
 
 
 def _in_finalizer(frame: Any) -> bool:
-    """Is the interrupted code (or what called it) a finalizer or an error hook?"""
+    """Is the interrupted code (or what called it) a finalizer, an error hook or a
+    garbage collector's callback (``gc.callbacks``: a test tool's, say)?"""
+    import gc
+
+    callbacks = {getattr(callback, "__code__", None) for callback in gc.callbacks}
     while frame is not None:
-        if frame.f_code.co_name in _FINALIZERS:
+        if frame.f_code.co_name in _FINALIZERS or frame.f_code in callbacks:
             return True
         frame = frame.f_back
     return False
