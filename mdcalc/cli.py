@@ -271,6 +271,12 @@ def run_command(
         from mdcalc.terminal import print_run_summary
 
         files = collect(paths, outputs=out is not None or report_dir is not None)
+        if report_dir is not None and any(
+            f.out_name.with_suffix(".html") == Path("index.html") for f in files
+        ):
+            clash = next(f for f in files if f.out_name.with_suffix(".html") == Path("index.html"))
+            why = "its report would be the index page DIR/index.html; rename the case file"
+            raise InputError(clash.path, [Problem(f"--report-dir: {why}")])
         if not files:
             raise InputError(" ".join(map(str, paths)), [Problem("no *.toml case files here")])
         workers = jobs or default_jobs(len(files))
@@ -305,7 +311,8 @@ def run_command(
             from mdcalc.document import index_html
 
             write_text_atomic(report_dir / "index.html", index_html(index))
-            print_error(f"wrote {report_dir / 'index.html'} and {len(files)} reports")
+            written = sum(1 for row in index if row[4])
+            print_error(f"wrote {report_dir / 'index.html'} and {written} reports")
         how = mapper.description
         print_run_summary(counts, failed, len(files), seconds, how, stderr=as_json)
         return worst_exit(code for code, status in STATUS_OF_EXIT.items() if counts[status])

@@ -160,9 +160,33 @@ def check_outputs(
             problems.append((path, f"{option}: the file exists; use --force to overwrite it"))
         elif path.resolve() == case.resolve():
             problems.append((path, f"{option}: would overwrite the case file itself"))
+    if document is not None and document.suffix.lower() == ".md":
+        problems += _chart_file_problems(case, plot, document, force)
     if problems:  # the first file's problems (an error names one file)
         first = problems[0][0]
         raise InputError(first, [Problem(m) for path, m in problems if path == first])
+
+
+def _chart_file_problems(
+    case: Path, plot: Path | None, document: Path, force: bool
+) -> list[tuple[Path, str]]:
+    """A Markdown report's chart PNGs (NAME-1.png, ...) must not overwrite the case
+    file or the --plot picture, nor, without --force, a file that is there."""
+    import glob
+
+    from mdcalc.document import is_chart_file
+
+    problems: list[tuple[Path, str]] = []
+    for other, what in ((case, "the case file"), (plot, "the --plot picture")):
+        if other is not None and is_chart_file(document, other):
+            why = f"--report: its chart pictures ({document.stem}-N.png) would overwrite {what}"
+            problems.append((document, f"{why} {other}"))
+    if not force:
+        pattern = glob.escape(str(document.with_name(document.stem))) + "-*.png"
+        there = sorted(Path(p) for p in glob.glob(pattern) if is_chart_file(document, Path(p)))
+        if there:
+            problems.append((there[0], "--report: file exists; use --force to overwrite it"))
+    return problems
 
 
 def _charts(run: Any, plot: Path) -> list[Any]:

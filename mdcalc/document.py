@@ -18,6 +18,7 @@ from dataclasses import dataclass, field
 from datetime import UTC, datetime
 from pathlib import Path
 from typing import Any
+from urllib.parse import quote
 
 from mdcalc import __version__
 from mdcalc.casefile import dotted, unit_of
@@ -132,6 +133,7 @@ th, td { border: 1px solid #ccc; padding: .2em .55em; vertical-align: top; }
 th { background: #f0f0f0; text-align: left; font-weight: 600; }
 td.r, th.r { text-align: right; white-space: nowrap; }
 td.col-note { color: #555; font-size: .92em; }
+td.col-label { white-space: pre-wrap; }
 tr.reference td { font-weight: 600; background: #fafaf0; }
 table.meta th { width: 8em; }
 table.meta td code { font-size: .85em; word-break: break-all; }
@@ -172,7 +174,8 @@ def to_html(document: Document, svgs: list[str] | None = None, missing: str = ""
     if notes:
         out.append('<section class="notes">')
         for level, text in notes:
-            out.append(f'<div class="note {level}"><strong>{e(level)}:</strong> {e(text)}</div>')
+            label = NOTE_LABELS[level]
+            out.append(f'<div class="note {level}"><strong>{label}:</strong> {e(text)}</div>')
         out.append("</section>")
     if document.inputs:
         out.append('<section class="inputs"><h2>Inputs</h2>')
@@ -224,11 +227,14 @@ def _notes(document: Document) -> list[tuple[str, str]]:
     """The notes and warnings, and why there is no answer or a method was cut."""
     report = document.report
     ordered = sorted(report.notes, key=lambda n: n.level != "warning")  # warnings first
-    notes: list[tuple[str, str]] = [(n.level, n.text) for n in ordered]
-    notes += [("warning", f"time budget: {cut}") for cut in report.cut]
+    notes: list[tuple[str, str]] = [(n.level, n.text) for n in ordered]  # cuts among them
     if report.status != "ok":
-        notes.insert(0, ("noanswer", f"no answer: {report.message}"))
+        notes.insert(0, ("noanswer", report.message or ""))
     return notes
+
+
+#: How a note is introduced, by its level.
+NOTE_LABELS = {"noanswer": "no answer", "warning": "warning", "info": "note"}
 
 
 def _html_table(
@@ -269,8 +275,7 @@ def to_markdown(document: Document, images: list[str] | None = None, missing: st
     out = [f"# {_md(report.title)}", ""]
     out += _md_table(["", ""], [[label, _plain(value)] for label, value in _meta(document)])
     for level, text in _notes(document):
-        title = {"noanswer": "No answer", "warning": "Warning", "info": "Note"}[level]
-        out += [f"> **{title}:** {_md(text)}", ""]
+        out += [f"> **{NOTE_LABELS[level].capitalize()}:** {_md(text)}", ""]
     if document.inputs:
         out += ["## Inputs", ""]
         header = ["key", "as written", "as computed with", "unit"]
@@ -284,7 +289,7 @@ def to_markdown(document: Document, images: list[str] | None = None, missing: st
             out += [f"> **Charts:** {_md(missing)}", ""]
         else:
             for chart, name in zip(document.charts, images, strict=True):
-                out += [f"![{_md(chart.title)}]({name})", ""]
+                out += [f"![{_md(chart.title)}]({quote(name)})", ""]
     out.append(
         f"*mdcalc {document.version} · {report.problem} · {_md(document.case_name)} · "
         f"{document.date}*"
@@ -295,9 +300,11 @@ def to_markdown(document: Document, images: list[str] | None = None, missing: st
 def _md(text: str) -> str:
     """Text safe in a Markdown table cell or line: pipes and markup escaped."""
     out = text.replace("\\", "\\\\")
-    for char in "|*_`[]<>":
+    for char in "|*_`[]<>&~#":
         out = out.replace(char, "\\" + char)
-    return out.replace("\n", " ")
+    out = out.replace("\n", " ")
+    stripped = out.lstrip(" ")  # an indented label keeps its indent (a sub-row)
+    return "&nbsp;" * (len(out) - len(stripped)) + stripped
 
 
 def _plain(value: str) -> str:
@@ -331,6 +338,16 @@ def check_path(path: Path) -> str | None:
     if path.suffix.lower() not in FORMATS:
         return f"--report: use a file ending {' or '.join(FORMATS)}"
     return None
+
+
+def is_chart_file(report: Path, other: Path) -> bool:
+    """Is ``other`` a name a Markdown report at ``report`` gives its chart PNGs?"""
+    import re
+
+    pattern = re.escape(report.stem) + r"-[0-9]+\.png"
+    return other.parent.resolve() == report.parent.resolve() and bool(
+        re.fullmatch(pattern, other.name)
+    )
 
 
 def chart_files(path: Path, count: int) -> list[Path]:
@@ -385,7 +402,7 @@ def index_html(rows: list[tuple[str, str, str, str, str]]) -> str:
     e = html.escape
     body = []
     for case, problem, title, status, link in rows:
-        name = f'<a href="{e(link)}">{e(case)}</a>' if link else e(case)
+        name = f'<a href="{e(quote(link))}">{e(case)}</a>' if link else e(case)
         body.append(
             f'<tr class="{e(status)}"><td>{name}</td><td>{e(problem)}</td>'
             f"<td>{e(title)}</td><td>{e(status)}</td></tr>"

@@ -132,7 +132,10 @@ def chart_images(charts: Sequence[Chart], fmt: Literal["svg", "png"]) -> list[by
                 buffer,
                 format=fmt,
                 dpi=120,
-                metadata={"Date": None} if fmt == "svg" else None,
+                # No date, no creator's or Dublin Core's URLs: nothing external.
+                metadata=dict.fromkeys(("Date", "Creator", "Format", "Type"))
+                if fmt == "svg"
+                else None,
             )
         images.append(buffer.getvalue())
     return images

@@ -59,7 +59,7 @@ def collect(paths: Iterable[Path], outputs: bool = False) -> list[CaseFile]:
         if other != case.path:
             clashes.append(Problem(f"{other} and {case.path} would both write {case.out_name}"))
     if clashes and outputs:
-        raise InputError("mdcalc run --out", clashes)
+        raise InputError("mdcalc run", clashes)
     return files
 
 

@@ -219,11 +219,16 @@ class Grid:
     kind: Literal["quantities", "table", "methods"]
 
     def shown(self) -> Grid:
-        """This grid without the columns whose every cell is empty ("" or "—")."""
+        """This grid without the columns whose every cell is empty ("" or "—"); a
+        Methods "rel. error" column goes with its value column."""
+        filled = [
+            not self.rows or any(row[i] not in ("", "—") for row in self.rows)
+            for i in range(len(self.roles))
+        ]
         keep = [
             i
-            for i in range(len(self.roles))
-            if not self.rows or any(row[i] not in ("", "—") for row in self.rows)
+            for i, role in enumerate(self.roles)
+            if (filled[i - 1] if role == "error" else filled[i])
         ]
         if len(keep) == len(self.roles):
             return self
