@@ -54,14 +54,18 @@ def document_of(run: Any, when: datetime | None = None) -> Document:
     stamp = (when or datetime.now(UTC)).strftime("%Y-%m-%d %H:%M UTC")
     make = getattr(run.module, "charts", None)
     charts = list(make(run.result)) if make is not None and run.result is not None else []
-    return Document(
-        run.report, case.path.name, digest, stamp, inputs_of(run.module.Case, case), charts
-    )
+    inputs = inputs_of(run.module.Case, case, getattr(run, "model", None))
+    return Document(run.report, case.path.name, digest, stamp, inputs, charts)
 
 
-def inputs_of(model: Any, case: Any) -> list[tuple[str, str, str, str]]:
+#: "As written" of a value the case file leaves to its default.
+DEFAULT = "(default)"
+
+
+def inputs_of(model: Any, case: Any, validated: Any = None) -> list[tuple[str, str, str, str]]:
     """Every value of the case file (lists item by item), as written and as the
-    solver took it: a quantity string ("1500 kg") converted to the field's unit."""
+    solver took it: a quantity string ("1500 kg") converted to the field's unit;
+    then, from the ``validated`` case, each value the file left to its default."""
     converted = {c.loc: c for c in case.conversions}
     rows: list[tuple[str, str, str, str]] = []
 
@@ -88,7 +92,36 @@ def inputs_of(model: Any, case: Any) -> list[tuple[str, str, str, str]]:
     for key, value in case.data.items():
         if key not in NOT_INPUTS:
             walk(value, (key,))
+    if validated is not None:
+        rows += _defaults(model, case.data, validated.model_dump())
     return rows
+
+
+def _defaults(model: Any, data: Any, values: Any) -> list[tuple[str, str, str, str]]:
+    """(key, "(default)", value, unit) of each value in ``values`` (the validated
+    case) that ``data`` (the file) does not have; sections the file leaves out and
+    empty values (None) are not inputs."""
+    rows: list[tuple[str, str, str, str]] = []
+
+    def walk(value: Any, written: Any, loc: tuple[str | int, ...]) -> None:
+        if isinstance(value, dict):
+            if not isinstance(written, dict):
+                return  # a section the file does not have (or holds as a quantity)
+            for key, item in value.items():
+                if loc or key not in NOT_INPUTS:
+                    walk(item, written.get(key, _MISSING), (*loc, key))
+        elif isinstance(value, list) and isinstance(written, list):
+            for index, item in enumerate(value):
+                if index < len(written):
+                    walk(item, written[index], (*loc, index))
+        elif written is _MISSING and value is not None and not isinstance(value, list | dict):
+            rows.append((dotted(loc), DEFAULT, _toml_text(value), unit_of(model, loc)))
+
+    walk(values, data, ())
+    return rows
+
+
+_MISSING = object()
 
 
 def _written(case: Any, loc: tuple[str | int, ...], value: Any) -> str:
@@ -149,6 +182,7 @@ footer { margin-top: 2em; font-size: .85em; color: #666; border-top: 1px solid #
   body { max-width: none; margin: 0; padding: 0; }
   h2 { break-after: avoid; }
   table, tr, .note { break-inside: avoid; }
+  table.methods, table.table { font-size: 8pt; }
 }
 """
 

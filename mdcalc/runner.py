@@ -54,6 +54,7 @@ class Run:
     result: Any
     module: Any
     case: CaseText
+    model: Any = None  # the validated case (None where validation gave up)
 
 
 def run_case(
@@ -122,7 +123,7 @@ def solve_text(
     report.case = str(path)
     if case.conversions:
         report.sections.insert(0, units_section(case.conversions))
-    return Run(report, result, module, case)
+    return Run(report, result, module, case, model)
 
 
 def solve_model(

@@ -395,3 +395,11 @@ def test_the_index_cannot_take_a_cases_place_and_links_are_encoded(cli, tmp_path
     index = page((tmp_path / "out" / "index.html").read_text(encoding="utf-8"))
     assert index.links == ["a%231%2050%25.html"]
     assert (tmp_path / "out" / "a#1 50%.html").exists()
+
+
+def test_values_left_to_their_defaults_are_listed_as_such(cli, tmp_path):
+    text, _ = _report(cli, tmp_path, LECTURE, ".md")
+    rows = {row[0]: row[1:] for row in markdown_tables(text)[1][1:]}
+    assert rows["vehicle.mass"] == ["1500.0", "1500.0", "kg"]  # written
+    assert rows["gravity"] == ["(default)", "9.80665", "m/s^2"]  # standard gravity
+    assert "driver.reaction_time" not in rows  # a section the case leaves out
