@@ -64,9 +64,9 @@ class RunOptions:
     color: bool
     width: int
     #: Cheap methods are repeated for this long to time them (``methods.timed``);
-    #: a batch takes 20 µs, not the 2 ms of a single run: a mean over some tens of
-    #: calls of a microsecond method, not the hundreds of a single run.
-    timing_budget: float = 2e-5
+    #: a batch takes 5 µs, not the 2 ms of a single run: the mean of a few calls of a
+    #: microsecond method (its timer reads cost 0.05 µs), not of hundreds.
+    timing_budget: float = 5e-6
     #: Each file's time limit [s] (None: none).
     time_limit: float | None = 60.0
     #: Make each file's HTML calculation report (``run --report-dir``).

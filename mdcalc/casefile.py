@@ -1,4 +1,4 @@
-"""Read case files (tomllib), validate them (pydantic), turn errors into messages.
+"""Read case files (tomli), validate them (pydantic), turn errors into messages.
 
 All file I/O of case files lives here. Messages follow the
 ``file:line: error: path: message`` form that editors and CI annotators read.
@@ -8,11 +8,11 @@ from __future__ import annotations
 
 import difflib
 import re
-import tomllib
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, TypeVar
 
+import tomli
 from pydantic import BaseModel, ValidationError
 
 from mdcalc.errors import InputError, Problem
@@ -21,8 +21,6 @@ from mdcalc.model import FieldError
 
 M = TypeVar("M", bound=BaseModel)
 
-_TOML_POSITION = re.compile(r"\(at line (\d+), column (\d+)\)")
-_TOML_EOF = re.compile(r"\(at end of document\)")
 _HEADER = re.compile(r"^\s*(\[\[?)\s*([^\]]+?)\s*\]\]?\s*(#.*)?$")
 _KEY = re.compile(r"^\s*([A-Za-z0-9_\-\".' ]+?)\s*=")
 _UNIT = re.compile(r"\[([^\]]+)\]\s*$")
@@ -70,42 +68,28 @@ def read_case(path: Path) -> CaseText:
         problem = Problem("not a UTF-8 text file (TOML must be UTF-8)", line=bad_line)
         raise InputError(path, [problem]) from None
     try:
-        data = tomllib.loads(text)
-    except RecursionError:
-        raise InputError(path, [Problem("TOML nested too deeply for a case file")]) from None
-    except tomllib.TOMLDecodeError as exc:
-        # Python 3.11's tomllib carries the position only inside its message text.
-        message = str(exc)
-        match = _TOML_POSITION.search(message)
-        line: int | None = None
-        column: int | None = None
-        if match:
-            line, column = int(match.group(1)), int(match.group(2))
-        elif _TOML_EOF.search(message):
-            line = text.count("\n") + 1
-            column = len(text) - (text.rfind("\n") + 1) + 1  # just past the last character
-        reason = _TOML_POSITION.sub("", _TOML_EOF.sub("", message)).strip()
-        raise InputError(
-            path, [Problem(f"TOML syntax: {reason}", line=line, column=column)]
-        ) from None
+        data = tomli.loads(text)
+    except RecursionError:  # tomli's own limits: 400 levels of brackets, 1000 key parts
+        raise InputError(path, [Problem(_TOO_DEEP)]) from None
+    except tomli.TOMLDecodeError as exc:
+        # At the end of the document too: just past the last character.
+        problem = Problem(f"TOML syntax: {exc.msg}", line=exc.lineno, column=exc.colno)
+        raise InputError(path, [problem]) from None
     except ValueError as exc:  # an integer of more than 4300 digits, say
         raise InputError(
             path, [Problem(f"TOML value out of range: {str(exc).split(':')[0]}")]
         ) from None
-    if _depth(data) > MAX_DEPTH:
-        raise InputError(
-            path,
-            [
-                Problem(
-                    f"tables and lists nested more than {MAX_DEPTH} deep; a case file needs a few"
-                )
-            ],
-        )
+    # Each level of nesting takes a "[", "{" or "." of the text: a small case has too
+    # few of them to need the walk.
+    nesting = text.count("[") + text.count("{") + text.count(".")
+    if nesting >= MAX_DEPTH and _depth(data) > MAX_DEPTH:
+        raise InputError(path, [Problem(_TOO_DEEP)])
     return CaseText(path, text, data)
 
 
 #: How deep tables and lists may nest in a case file (the deepest shipped case: 3).
 MAX_DEPTH = 16
+_TOO_DEEP = f"tables and lists nested more than {MAX_DEPTH} deep; a case file needs a few"
 
 
 def _depth(data: Any) -> int:
@@ -130,7 +114,9 @@ def validate(model: type[M], case: CaseText) -> M:
     """
     problems: list[Problem] = []
     conversions: list[Conversion] = []
-    data = _with_quantities(model, case, case.data, (), conversions, problems)
+    data = case.data
+    if _has_strings(data):  # most batch cases have none but the problem's name
+        data = _with_quantities(model, case, data, (), conversions, problems)
     case.conversions = conversions
     try:
         validated = model.model_validate(data)
@@ -142,6 +128,21 @@ def validate(model: type[M], case: CaseText) -> M:
     if problems:
         raise InputError(case.path, problems) from None
     return validated
+
+
+def _has_strings(data: dict[str, Any]) -> bool:
+    """Is there a string in ``data`` besides the top-level ``problem`` and ``title``
+    (which are never numbers)?"""
+    stack: list[Any] = [v for k, v in data.items() if k not in ("problem", "title")]
+    while stack:
+        node = stack.pop()
+        if isinstance(node, str):
+            return True
+        if isinstance(node, dict):
+            stack.extend(node.values())
+        elif isinstance(node, list):
+            stack.extend(node)
+    return False
 
 
 def _with_quantities(

@@ -6,6 +6,7 @@ messages whichever parsed the command line. Imports nothing heavy: a scene's
 modules load inside the body.
 """
 
+import os
 import sys
 import traceback
 from collections.abc import Callable
@@ -125,6 +126,115 @@ def run_problem(
         return 0
 
     return guard(body, debug)
+
+
+def run_batch(
+    paths: list[Path],
+    jobs: int = 0,
+    out: Path | None = None,
+    as_json: bool = False,
+    report_dir: Path | None = None,
+    time_limit: float | None = DEFAULT_TIME_LIMIT,
+    scheduler: str | None = None,
+    debug: bool = False,
+) -> int:
+    """``mdcalc run``: many case files in a process pool (or on a dask cluster), each
+    result written as soon as it and the ones before it are done; a summary at the end.
+    Exit 0 when every file computed; otherwise the worst file's code."""
+
+    def body() -> int:
+        import shutil
+        import time
+        from collections import Counter
+
+        from mdcalc.batch import FileRunner, RunOptions, lost_file, worst_exit
+        from mdcalc.cluster import executor, scheduler_of
+        from mdcalc.errors import STATUS_OF_EXIT
+        from mdcalc.pool import collect, default_jobs
+        from mdcalc.terminal import print_run_summary
+
+        files = collect(paths, outputs=out is not None or report_dir is not None)
+        if report_dir is not None and any(
+            f.out_name.with_suffix(".html") == Path("index.html") for f in files
+        ):
+            clash = next(f for f in files if f.out_name.with_suffix(".html") == Path("index.html"))
+            why = "its report would be the index page DIR/index.html; rename the case file"
+            raise InputError(clash.path, [Problem(f"--report-dir: {why}")])
+        if not files:
+            raise InputError(" ".join(map(str, paths)), [Problem("no *.toml case files here")])
+        workers = jobs or default_jobs(len(files))
+        text = not as_json and out is None
+        width = shutil.get_terminal_size().columns if sys.stdout.isatty() else 140
+        options = RunOptions(
+            json=as_json or out is not None,
+            text=text,
+            color=sys.stdout.isatty() and "NO_COLOR" not in os.environ,
+            width=width,
+            time_limit=time_limit,
+            document=report_dir is not None,
+        )
+        counts: Counter[str] = Counter()
+        index: list[tuple[str, str, str, str, str]] = []
+        failed: list[tuple[str, str]] = []
+        with executor(scheduler_of(scheduler), workers) as mapper:
+            start = time.perf_counter()
+            flushed = start
+            # Streamed: each result is written as soon as it and the ones before it are done.
+            outcomes = mapper(FileRunner(options), [str(f.path) for f in files], on_error=lost_file)
+            for case, outcome in zip(files, outcomes, strict=True):
+                flushed = _write_outcome(case, outcome, out, as_json, text, flushed)
+                if report_dir is not None:
+                    index.append(_write_document(case, outcome, report_dir))
+                counts[outcome.status] += 1
+                if outcome.exit_code != 0:
+                    failed.append((outcome.path, outcome.status))
+        seconds = time.perf_counter() - start
+        if report_dir is not None:
+            from mdcalc.casefile import write_text_atomic
+            from mdcalc.document import index_html
+
+            write_text_atomic(report_dir / "index.html", index_html(index))
+            written = sum(1 for row in index if row[4])
+            print_error(f"wrote {report_dir / 'index.html'} and {written} reports")
+        how = mapper.description
+        print_run_summary(counts, failed, len(files), seconds, how, stderr=as_json)
+        return worst_exit(code for code, status in STATUS_OF_EXIT.items() if counts[status])
+
+    return guard(body, debug)
+
+
+def _write_document(case: Any, outcome: Any, folder: Path) -> tuple[str, str, str, str, str]:
+    """Write a file's HTML report under ``folder``; its row of the index page."""
+    from mdcalc.casefile import write_text_atomic
+
+    name = case.out_name.with_suffix(".html")
+    if outcome.document:
+        write_text_atomic(folder / name, outcome.document)
+    link = name.as_posix() if outcome.document else ""
+    return (str(case.path), outcome.problem or "", outcome.title or "", outcome.status, link)
+
+
+def _write_outcome(
+    case: Any, outcome: Any, out: Path | None, as_json: bool, text: bool, flushed: float
+) -> float:
+    """Write one file's outcome where it goes; flush stdout every 0.2 s (streaming)."""
+    import time
+
+    from mdcalc.casefile import write_text_atomic
+
+    if out is not None:
+        write_text_atomic(out / case.out_name, outcome.json + "\n")
+    if as_json:
+        print(outcome.json, flush=False)
+    elif text:
+        sys.stdout.write(outcome.text)
+        print()
+    if (now := time.perf_counter()) - flushed > 0.2:
+        sys.stdout.flush()
+        flushed = now
+    for message in outcome.messages:
+        print_error(message)
+    return flushed
 
 
 def check_outputs(

@@ -4,10 +4,11 @@ A plain run of one scene, ``mdcalc PROBLEM CASE.toml [--json] [--debug]`` (what 
 shell loop over case files types), goes straight to the problem's command body
 (:func:`mdcalc.command.run_problem`) without importing typer: its parser and the
 building of every command are most of what such a run spends above the stack's
-floor. Any other command line, an option more, a misspelling, ``--help``, shell
-completion, goes through the typer application (:mod:`mdcalc.cli`) as before; the
-body, its output, its messages and exit codes are the same either way
-(tests/test_launch.py).
+floor. So does a plain batch, ``mdcalc run PATH... [--jobs N] [--json] [--debug]``
+(:func:`mdcalc.command.run_batch`). Any other command line, an option more, a
+misspelling, ``--help``, shell completion, goes through the typer application
+(:mod:`mdcalc.cli`) as before; the body, its output, its messages and exit codes are
+the same either way (tests/test_launch.py).
 """
 
 import os
@@ -26,13 +27,42 @@ def direct_run(argv: list[str]) -> tuple[str, str, bool, bool] | None:
 
     if not argv or argv[0] not in PROBLEMS:
         return None
-    if any(name.startswith("_") and name.endswith("_COMPLETE") for name in os.environ):
-        return None  # click's shell completion is asking
+    if _completing():
+        return None
     cases = [arg for arg in argv[1:] if not arg.startswith("-")]
     flags = [arg for arg in argv[1:] if arg.startswith("-")]
     if len(cases) != 1 or not cases[0] or any(flag not in DIRECT_FLAGS for flag in flags):
         return None
     return argv[0], cases[0], "--json" in flags, "--debug" in flags
+
+
+def direct_batch(argv: list[str]) -> tuple[list[str], int, bool, bool] | None:
+    """(paths, jobs, as_json, debug) when ``argv`` is a plain ``run`` the direct path
+    takes (``--jobs N``, ``-j N`` or ``--jobs=N`` with N digits; ``--json``;
+    ``--debug``; at least one path); None for anything typer must parse."""
+    if not argv or argv[0] != "run" or _completing():
+        return None
+    paths: list[str] = []
+    jobs, as_json, debug = 0, False, False
+    rest = iter(argv[1:])
+    for arg in rest:
+        if arg in ("--jobs", "-j") or arg.startswith("--jobs="):
+            value = arg.partition("=")[2] if "=" in arg else next(rest, "")
+            if not (value.isascii() and value.isdigit()):
+                return None  # typer says what is wrong with it
+            jobs = int(value)
+        elif arg in DIRECT_FLAGS:
+            as_json, debug = as_json or arg == "--json", debug or arg == "--debug"
+        elif arg.startswith("-") or not arg:
+            return None
+        else:
+            paths.append(arg)
+    return (paths, jobs, as_json, debug) if paths else None
+
+
+def _completing() -> bool:
+    """click's shell completion is asking (it goes through typer)."""
+    return any(name.startswith("_") and name.endswith("_COMPLETE") for name in os.environ)
 
 
 def main() -> None:
@@ -48,6 +78,14 @@ def main() -> None:
             problem, case, as_json, debug = plain
             spec = PROBLEMS[problem]
             sys.exit(run_problem(spec, Path(case), as_json, debug, time_limit=DEFAULT_TIME_LIMIT))
+        batch = direct_batch(sys.argv[1:])
+        if batch is not None:
+            from pathlib import Path
+
+            from mdcalc.command import run_batch
+
+            paths, jobs, as_json, debug = batch
+            sys.exit(run_batch([Path(p) for p in paths], jobs, as_json=as_json, debug=debug))
     except KeyboardInterrupt:  # before the body's own guard: as it would say
         from mdcalc.errors import EXIT_INTERRUPTED
 

@@ -35,32 +35,66 @@ R = TypeVar("R")
 @dataclass(frozen=True)
 class CaseFile:
     path: Path
-    #: Where its result goes under ``--out DIR``: the file's path inside the folder it
-    #: was found in (so cases/a/x.toml and cases/b/x.toml do not collide), .json.
-    out_name: Path
+    #: The file's path inside the folder it was found in (its name, for a file given
+    #: as such), "/"-separated.
+    inside: str
+
+    @property
+    def out_name(self) -> Path:
+        """Where its result goes under ``--out DIR``: ``inside`` with .json (so
+        cases/a/x.toml and cases/b/x.toml do not collide)."""
+        return Path(self.inside).with_suffix(".json")
 
 
 def collect(paths: Iterable[Path], outputs: bool = False) -> list[CaseFile]:
-    """Files as given, folders searched recursively for ``*.toml`` (sorted).
+    """Files as given, folders searched recursively for ``*.toml`` (sorted as paths).
 
     With ``outputs``, two files that would write the same result file are an error.
     """
     files: list[CaseFile] = []
     for path in paths:
         if path.is_dir():
-            for found in sorted(p for p in path.rglob("*.toml") if p.is_file()):
-                files.append(CaseFile(found, found.relative_to(path).with_suffix(".json")))
+            base = str(path)
+            for inside in _toml_files(base):
+                files.append(CaseFile(Path(os.path.join(base, inside)), inside))
         else:
-            files.append(CaseFile(path, Path(path.name).with_suffix(".json")))
-    names: dict[Path, Path] = {}
-    clashes = []
-    for case in files:
-        other = names.setdefault(case.out_name, case.path)
-        if other != case.path:
-            clashes.append(Problem(f"{other} and {case.path} would both write {case.out_name}"))
-    if clashes and outputs:
-        raise InputError("mdcalc run", clashes)
+            files.append(CaseFile(path, path.name))
+    if outputs:
+        names: dict[Path, Path] = {}
+        clashes = []
+        for case in files:
+            other = names.setdefault(case.out_name, case.path)
+            if other != case.path:
+                clashes.append(Problem(f"{other} and {case.path} would both write {case.out_name}"))
+        if clashes:
+            raise InputError("mdcalc run", clashes)
     return files
+
+
+def _toml_files(folder: str) -> list[str]:
+    """The ``*.toml`` files under ``folder`` as "/"-separated paths inside it, in the
+    order of ``sorted(Path(folder).rglob("*.toml"))`` with ``is_file()`` (what this
+    did before; scandir and string keys are ten times faster on 10⁵ files): links to
+    files count, links to folders are not followed, unreadable folders are skipped."""
+    found: list[str] = []
+    stack = [""]
+    while stack:
+        inside = stack.pop()
+        try:
+            with os.scandir(os.path.join(folder, inside) if inside else folder) as entries:
+                for entry in entries:
+                    name = f"{inside}/{entry.name}" if inside else entry.name
+                    try:
+                        if entry.is_dir(follow_symlinks=False):
+                            stack.append(name)
+                        elif entry.name.endswith(".toml") and entry.is_file():
+                            found.append(name)
+                    except OSError:
+                        continue
+        except OSError:
+            continue
+    # Path order compares part by part: "a/x" before "a-b/x" ("/" > "-" as text).
+    return sorted(found, key=lambda name: name.split("/"))
 
 
 # ------------------------------------------------------------------------- the pool

@@ -601,6 +601,28 @@ def _plain_table(
     return out
 
 
+def plain_summary(
+    before: list[str],
+    header: list[str],
+    rows: list[list[str]],
+    right: list[bool],
+    after: list[str],
+    width: int,
+) -> str | None:
+    """What rich prints on a colourless console ``width`` wide for the lines ``before``
+    (rich markup), a boxed table of ``header`` and ``rows``, and the lines ``after``
+    (printed with ``markup=False``); None where only rich can lay it out. The summary
+    of ``mdcalc run`` on a pipe."""
+    table = _plain_table("", header, rows, right, True, width)
+    plain = [_literal(line) for line in before] + [_narrow(line) for line in after]
+    wrapped = [_wrap(line, width) for line in before + after]
+    if table is None or not all(plain) or any(w is None for w in wrapped):
+        return None
+    lines = [line for w in wrapped[: len(before)] for line in w or ()]
+    lines += table + [line for w in wrapped[len(before) :] for line in w or ()]
+    return "\n".join(lines) + "\n"
+
+
 def render_plain(report: Report, width: int) -> str | None:
     """The text :func:`render_rich` prints on a colourless console ``width`` wide, or
     None where only rich can lay the report out (see above)."""

@@ -20,10 +20,15 @@ def stdout_console(stderr: bool = False) -> Any:
 def plain_stdout() -> bool:
     """stdout takes text without colour: not a terminal, and no variable asks rich
     for a terminal's codes anyway."""
+    return plain_stream(sys.stdout)
+
+
+def plain_stream(stream: Any) -> bool:
+    """``stream`` takes text without colour (see :func:`plain_stdout`)."""
     import os
 
     forced = ("FORCE_COLOR", "TTY_COMPATIBLE", "TTY_INTERACTIVE")
-    return not sys.stdout.isatty() and not any(os.environ.get(name) for name in forced)
+    return not stream.isatty() and not any(os.environ.get(name) for name in forced)
 
 
 def print_report(report: Any, width: int, console: Any) -> None:
@@ -41,25 +46,35 @@ def print_report(report: Any, width: int, console: Any) -> None:
 def print_run_summary(
     counts: Any, failed: list[tuple[str, str]], files: int, seconds: float, how: str, stderr: bool
 ) -> None:
+    head = (
+        f"mdcalc run: {files} case files in {seconds:.3g} s "
+        f"({files / max(seconds, 1e-9):.4g} files/s, {how})"
+    )
+    rows = [[status, str(counts[status])] for status in STATUS_OF_EXIT.values()]
+    shown = 20
+    after = [f"{status}: {path}" for path, status in failed[:shown]]
+    if len(failed) > shown:
+        after.append(f"... and {len(failed) - shown} more")
+    stream = sys.stderr if stderr else sys.stdout
+    if plain_stream(stream):  # the very text rich prints, without importing rich
+        from mdcalc.report import plain_summary
+
+        text = plain_summary([head], ["status", "files"], rows, [False, True], after, 140)
+        if text is not None:
+            stream.write(text)
+            return
     from rich.table import Table
 
     table = Table()
     table.add_column("status")
     table.add_column("files", justify="right")
-    for status in STATUS_OF_EXIT.values():
-        table.add_row(status, str(counts[status]))
+    for row in rows:
+        table.add_row(*row)
     console = stdout_console(stderr=stderr)
-    console.print(
-        f"mdcalc run: {files} case files in {seconds:.3g} s "
-        f"({files / max(seconds, 1e-9):.4g} files/s, {how})",
-        highlight=False,
-    )
+    console.print(head, highlight=False)
     console.print(table)
-    shown = 20
-    for path, status in failed[:shown]:
-        console.print(f"{status}: {path}", highlight=False, markup=False)
-    if len(failed) > shown:
-        console.print(f"... and {len(failed) - shown} more")
+    for line in after:
+        console.print(line, highlight=False, markup=False)
 
 
 class Progress:

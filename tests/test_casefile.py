@@ -64,8 +64,8 @@ HEAD = 'problem = "coupling"\n'
 @pytest.mark.parametrize(
     ("body", "says"),
     [
-        ("x = " + "[" * 5000 + "]" * 5000 + "\n", "nested too deeply"),
-        ("x = " + "{a=" * 3000 + "1" + "}" * 3000 + "\n", "nested too deeply"),
+        ("x = " + "[" * 5000 + "]" * 5000 + "\n", "nested more than 16 deep"),
+        ("x = " + "{a=" * 3000 + "1" + "}" * 3000 + "\n", "nested more than 16 deep"),
         (".".join(["a"] * 10_000) + " = 1\n", "nested more than 16 deep"),
         ("[" + ".".join(["t"] * 40) + "]\nx = 1\n", "nested more than 16 deep"),
         ("x = " + "9" * 4301 + "\n", "Exceeds the limit (4300 digits)"),

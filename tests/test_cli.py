@@ -123,6 +123,14 @@ def test_broken_toml_line_and_column_are_exact(cli, write_case):
     assert result.stderr.startswith(f"{path}:2:5: error: TOML syntax:")
 
 
+def test_broken_toml_at_the_end_points_just_past_the_last_character(cli, write_case):
+    # The text ends inside the array: line 3, column 4 (just after "  2").
+    path = write_case('problem = "braking"\na = [1,\n  2')
+    result = cli("braking", path)
+    assert result.exit_code == 2
+    assert result.stderr.startswith(f"{path}:3:4: error: TOML syntax:")
+
+
 def test_missing_file(cli, tmp_path):
     result = cli("hoist", tmp_path / "nope.toml")
     assert result.exit_code == 2

@@ -68,6 +68,33 @@ def test_a_case_file_at_the_cap_is_read(tmp_path):
     assert len(read_regular(exact)) == MAX_CASE_BYTES
 
 
+@pytest.mark.parametrize("size", [0, 1, 4095, 4096, 65537])
+def test_a_case_file_is_read_whole_whatever_its_size(tmp_path, size):
+    body = bytes(range(256)) * (size // 256 + 1)
+    path = tmp_path / "case.toml"
+    path.write_bytes(body[:size])
+    assert read_regular(path) == body[:size]
+
+
+def test_a_file_that_grows_while_read_is_read_to_the_cap(tmp_path, monkeypatch):
+    """fstat said 10 bytes; 40 are there when read: all 40 are read (cap 64), and
+    past the cap it is refused as before."""
+    from mdcalc import files
+
+    path = tmp_path / "case.toml"
+    path.write_bytes(b"x" * 40)
+    real = os.fstat
+
+    class Small:
+        def __init__(self, status):
+            self.st_mode, self.st_size = status.st_mode, 10
+
+    monkeypatch.setattr(files.os, "fstat", lambda fd: Small(real(fd)))
+    assert read_regular(path, limit=64) == b"x" * 40
+    with pytest.raises(InputError, match="larger than"):
+        read_regular(path, limit=32)
+
+
 def test_a_folder_is_named_as_such(tmp_path, cli):
     result = cli("coupling", tmp_path)
     assert result.exit_code == 2

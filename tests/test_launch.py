@@ -53,6 +53,55 @@ def test_everything_else_goes_through_typer(argv):
     assert direct_run(argv) is None
 
 
+@pytest.mark.parametrize(
+    ("argv", "expected"),
+    [
+        (["run", "cases"], (["cases"], 0, False, False)),
+        (["run", "a.toml", "b", "--json"], (["a.toml", "b"], 0, True, False)),
+        (["run", "--jobs", "2", "cases", "--debug"], (["cases"], 2, False, True)),
+        (["run", "-j", "0", "cases"], (["cases"], 0, False, False)),
+        (["run", "--jobs=3", "cases", "--jobs", "1"], (["cases"], 1, False, False)),
+    ],
+)
+def test_plain_batches_take_the_direct_path(argv, expected):
+    from mdcalc.launch import direct_batch
+
+    assert direct_batch(argv) == expected
+
+
+@pytest.mark.parametrize(
+    "argv",
+    [
+        ["run"],  # no path: typer says so
+        ["run", "--json"],
+        ["run", "cases", "--jobs"],  # the value missing
+        ["run", "cases", "--jobs", "-1"],  # typer: below the minimum
+        ["run", "cases", "--jobs", "two"],
+        ["run", "cases", "--jobs", "٢"],  # a digit, but not 0-9
+        ["run", "cases", "-j2"],
+        ["run", "cases", "--out", "out"],
+        ["run", "cases", "--report-dir", "out"],
+        ["run", "cases", "--time-limit", "5"],
+        ["run", "cases", "--scheduler", "local:1"],
+        ["run", "cases", "--help"],
+        ["run", "cases", ""],
+        ["run", "--", "cases"],
+        ["braking", "a.toml"],  # the other direct path's
+    ],
+)
+def test_every_other_batch_goes_through_typer(argv):
+    from mdcalc.launch import direct_batch
+
+    assert direct_batch(argv) is None
+
+
+def test_a_batch_completing_goes_through_typer(monkeypatch):
+    from mdcalc.launch import direct_batch
+
+    monkeypatch.setenv("_MDCALC_COMPLETE", "complete_bash")
+    assert direct_batch(["run", "cases"]) is None
+
+
 def test_shell_completion_goes_through_typer(monkeypatch):
     monkeypatch.setenv("_MDCALC_COMPLETE", "complete_bash")
     assert direct_run(["braking", "a.toml"]) is None
@@ -68,14 +117,12 @@ SCENES = [
 ]
 
 
-@pytest.mark.parametrize("argv", SCENES, ids=[" ".join(a[:1] + a[2:]) for a in SCENES])
-def test_the_direct_path_and_typer_give_the_same(argv, monkeypatch, write_case):
-    from mdcalc import methods
+def _console_script(argv: list[str], monkeypatch):
+    """``argv`` through the console script (mdcalc.launch.main), in-process."""
+    import typer.testing
+
     from mdcalc.cli import app
     from mdcalc.launch import main
-
-    monkeypatch.setattr(methods, "timed", lambda run: (run(), 1e-6))  # no timer noise
-    typer_way = CliRunner().invoke(app, argv)
 
     class Script:
         name = "mdcalc"
@@ -84,16 +131,59 @@ def test_the_direct_path_and_typer_give_the_same(argv, monkeypatch, write_case):
             sys.argv = [prog_name, *args]
             main()
 
-    import typer.testing
-
     monkeypatch.setattr(sys, "argv", list(sys.argv))
     monkeypatch.setattr(typer.testing, "_get_command", lambda _: Script())
-    direct = CliRunner().invoke(app, argv)
+    return CliRunner().invoke(app, argv)
+
+
+@pytest.mark.parametrize("argv", SCENES, ids=[" ".join(a[:1] + a[2:]) for a in SCENES])
+def test_the_direct_path_and_typer_give_the_same(argv, monkeypatch, write_case):
+    from mdcalc import methods
+    from mdcalc.cli import app
+
+    monkeypatch.setattr(methods, "timed", lambda run: (run(), 1e-6))  # no timer noise
+    typer_way = CliRunner().invoke(app, argv)
+
+    direct = _console_script(argv, monkeypatch)
     assert direct_run(argv) is not None
     assert (direct.exit_code, direct.stdout, direct.stderr) == (
         typer_way.exit_code,
         typer_way.stdout,
         typer_way.stderr,
+    )
+    assert typer_way.exit_code in (0, 2, 3)
+
+
+BATCHES = [
+    ["run", str(CASES / "braking"), "--jobs", "1", "--json"],
+    ["run", str(CASES / "hoist"), "-j", "1"],  # text reports, a no-answer among them
+    ["run", LECTURE, str(CASES / "no-such-case.toml"), "--jobs=1"],  # exit 2 for one file
+    ["run", str(CASES / "no-such-folder"), "--jobs", "1"],  # no case files: exit 2
+]
+
+
+@pytest.mark.parametrize("argv", BATCHES, ids=[" ".join(a[2:]) for a in BATCHES])
+def test_a_direct_batch_and_typer_give_the_same(argv, monkeypatch):
+    import re
+
+    from mdcalc import methods
+    from mdcalc.cli import app
+    from mdcalc.launch import direct_batch
+
+    monkeypatch.setattr(methods, "timed", lambda run: (run(), 1e-6))  # no timer noise
+    monkeypatch.setattr(methods, "MIN_TIMING_SECONDS", methods.MIN_TIMING_SECONDS)
+    typer_way = CliRunner().invoke(app, argv)
+
+    direct = _console_script(argv, monkeypatch)
+    assert direct_batch(argv) is not None
+
+    def timeless(text: str) -> str:  # the summary's own seconds and files/s
+        return re.sub(r"in \S+ s \(\S+ files/s", "in T s (R files/s", text)
+
+    assert (direct.exit_code, timeless(direct.stdout), timeless(direct.stderr)) == (
+        typer_way.exit_code,
+        timeless(typer_way.stdout),
+        timeless(typer_way.stderr),
     )
     assert typer_way.exit_code in (0, 2, 3)
 
@@ -130,6 +220,8 @@ print("TYPER", "typer" in sys.modules, code, file=sys.stderr)
         (["braking", LECTURE, "--json"], False, 0),
         (["braking", LECTURE, "--time-limit", "5"], True, 0),
         (["braking", LECTURE, "--jsn"], True, 2),
+        (["run", LECTURE, "--json", "--jobs", "1"], False, 0),
+        (["run", LECTURE, "--json", "--time-limit", "5"], True, 0),
     ],
 )
 def test_a_plain_run_does_not_import_typer(args, typer, code):

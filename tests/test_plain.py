@@ -198,3 +198,40 @@ def test_forced_colour_still_goes_through_rich():
     done = run_script("braking", CASES / "braking" / "lecture.toml", env=env)
     assert done.returncode == 0
     assert "\x1b[" in done.stdout
+
+
+def _summary(monkeypatch, rich: bool, failed: list[tuple[str, str]], how: str) -> str:
+    from collections import Counter
+
+    from mdcalc import terminal
+
+    out = io.StringIO()
+    monkeypatch.setattr(sys, "stdout", out)
+    monkeypatch.setattr(terminal, "plain_stream", lambda stream: not rich)
+    counts = Counter(status for _, status in failed) + Counter({"ok": 7})
+    terminal.print_run_summary(counts, failed, 7 + len(failed), 0.0123, how, stderr=False)
+    return out.getvalue()
+
+
+@pytest.mark.parametrize(
+    ("failed", "how", "plain"),
+    [
+        ([], "process pool, 2 jobs", True),
+        ([(f"cases/f_{i}.toml", "input-error") for i in range(25)], "in-process", True),
+        ([("cases/α β/x.toml", "no-answer"), ("[red]x[/red].toml", "input-error")], "p", True),
+        ([("x" * 300 + ".toml", "internal-error")], "p", False),  # a word over the width: rich
+        # "://127.0.0.1:" looks like an emoji code to the plain path: rich lays it out
+        ([("x.toml", "internal-error")], "dask tcp://127.0.0.1:8786, 4 workers", False),
+        ([("cases/日本.toml", "no-answer")], "p", False),  # wide characters: rich lays out
+        ([], "[bold]pool[/bold]", False),  # markup in the first line: rich
+    ],
+)
+def test_the_run_summary_on_a_pipe_is_riches_text(monkeypatch, failed, how, plain):
+    from mdcalc.report import plain_summary
+
+    assert _summary(monkeypatch, False, failed, how) == _summary(monkeypatch, True, failed, how)
+    files = 7 + len(failed)
+    head = f"mdcalc run: {files} case files in 0.0123 s ({files / 0.0123:.4g} files/s, {how})"
+    lines = [f"{status}: {path}" for path, status in failed[:20]]
+    text = plain_summary([head], ["status", "files"], [["ok", "7"]], [False, True], lines, 140)
+    assert (text is not None) == plain

@@ -35,3 +35,30 @@ def test_without_on_error_a_dead_worker_is_an_error():
 
     with pytest.raises(BrokenProcessPool):
         list(pool_map(square_or_die, list(range(30)), 2))
+
+
+def test_folders_are_searched_in_the_order_of_sorted_paths(tmp_path):
+    """collect() walks with scandir and sorts strings: the same files, in the same
+    order, as sorted(Path.rglob("*.toml")) with is_file() (what it did before)."""
+    from pathlib import Path
+
+    from mdcalc.pool import collect
+
+    names = ["a/x.toml", "a-b/x.toml", "a.b/y.toml", "A/z.toml", "a/b/c.toml", ".h.toml",
+             "z.toml", "a/.toml", "dir.toml/q.toml", "b/c.TOML", "a b/x.toml", "é/x.toml",
+             "a0/x.toml", "b/notes.txt"]  # fmt: skip
+    for name in names:
+        (tmp_path / name).parent.mkdir(parents=True, exist_ok=True)
+        (tmp_path / name).write_text("x = 1\n", encoding="utf-8")
+    os.symlink(tmp_path / "a", tmp_path / "link_to_folder")  # not followed
+    os.symlink(tmp_path / "z.toml", tmp_path / "link.toml")  # a file: counted
+    os.symlink(tmp_path / "nowhere", tmp_path / "broken.toml")
+    (tmp_path / "empty.toml").mkdir()
+    before = sorted(p for p in Path(tmp_path).rglob("*.toml") if p.is_file())
+    found = collect([tmp_path])
+    assert [case.path for case in found] == before
+    assert [case.out_name for case in found] == [
+        p.relative_to(tmp_path).with_suffix(".json") for p in before
+    ]
+    assert str(found[0].path) == str(tmp_path / ".h.toml")
+    assert collect([tmp_path / "z.toml"])[0].out_name == Path("z.json")
