@@ -23,9 +23,13 @@ REPEATS = 15
 
 
 def wall(command: list[str]) -> float:
+    """Seconds the command took; it must succeed (a quick failure is no figure)."""
     start = time.perf_counter()
-    subprocess.run(command, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, check=False)
-    return time.perf_counter() - start
+    done = subprocess.run(command, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, check=False)
+    seconds = time.perf_counter() - start
+    if done.returncode != 0:
+        raise SystemExit(f"bench: {' '.join(command)[:300]}: exit {done.returncode}\n{done.stderr}")
+    return seconds
 
 
 def best_of_interleaved(a: list[str], b: list[str], repeats: int = REPEATS) -> tuple[float, float]:

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import difflib
 import re
+from collections.abc import Iterable
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, TypeVar
@@ -213,7 +214,9 @@ def write_toml_atomic(path: Path, data: dict[str, Any], force: bool = False) -> 
     write_atomic(path, tomli_w.dumps(data), replace=force)
 
 
-def write_text_atomic(path: Path, text: str | bytes | bytearray) -> None:
+def write_text_atomic(
+    path: Path, text: str | bytes | bytearray | Iterable[bytes | memoryview]
+) -> None:
     """Write ``text`` (str, or bytes already UTF-8) to ``path`` atomically, replacing
     a regular file that is there (the results of ``run --out`` and ``sweep --out``,
     written again on each run)."""

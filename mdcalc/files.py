@@ -14,7 +14,7 @@ from __future__ import annotations
 import os
 import stat
 import tempfile
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 from pathlib import Path
 
 from mdcalc.errors import InputError, Problem
@@ -70,16 +70,16 @@ def _read_fd(fd: int, hint: int, most: int) -> bytes:
 
 def write_atomic(
     path: Path,
-    content: str | bytes | bytearray | Callable[[str], None],
+    content: str | bytes | bytearray | Iterable[bytes | memoryview] | Callable[[str], None],
     *,
     replace: bool,
     option: str = "",
 ) -> None:
-    """Write ``content`` to ``path`` (text, bytes, or a function that writes the file
-    whose name it is given) through a temporary file and a rename. ``replace``
-    False: the file must not exist (created exclusively); True: an existing regular
-    file is replaced and keeps its mode. Missing folders under ``path`` are made.
-    ``option`` (``"--plot: "``) starts each message."""
+    """Write ``content`` to ``path`` (text, bytes, byte pieces, or a function
+    that writes the file whose name it is given) through a temporary file and a
+    rename. ``replace`` False: the file must not exist (created exclusively); True: an
+    existing regular file is replaced and keeps its mode. Missing folders under
+    ``path`` are made. ``option`` (``"--plot: "``) starts each message."""
     existing = _existing_mode(path, option)
     if existing is not None and not replace:
         raise InputError(path, [Problem(f"{option}file exists; use --force to overwrite it")])
@@ -95,7 +95,12 @@ def write_atomic(
             content(tmp)
         else:
             with os.fdopen(fd, "wb") as handle:
-                handle.write(content.encode("utf-8") if isinstance(content, str) else content)
+                if isinstance(content, str):
+                    handle.write(content.encode("utf-8"))
+                elif isinstance(content, bytes | bytearray):
+                    handle.write(content)
+                else:  # pieces, written one after another as they come
+                    handle.writelines(content)
         os.chmod(tmp, existing if existing is not None else 0o666 & ~_umask())
         if replace:
             os.replace(tmp, path)

@@ -634,3 +634,38 @@ def test_the_printed_status_says_ok_or_no_answer_as_run_does(cli):
     # k = 189 ... 200, twelve points.
     ranges = cli("sweep", case, "--vary", "load.mass=100:1000:201")
     assert "points: 189 ok, 12 no-answer" in ranges.stdout
+
+
+@pytest.mark.parametrize("block", [65_536, 7, 1], ids=["one-block", "blocks-of-7", "blocks-of-1"])
+@pytest.mark.parametrize("failed", [False, True], ids=["all-ok", "some-failed"])
+def test_csv_numbers_read_back_as_the_very_floats(failed, block, monkeypatch):
+    """Every number of the CSV is the shortest text of its float (reads back exact), a
+    whole-number column without ".0", NaN an empty field, the status last; the same
+    text whatever the block of rows formatted at a time."""
+    import numpy as np
+
+    from mdcalc import sweep
+    from mdcalc.sweep import Table, to_csv
+
+    monkeypatch.setattr(sweep, "CSV_BLOCK_ROWS", block)
+
+    rng = np.random.default_rng(7)
+    x = np.linspace(800.0, 3000.0, 1001)
+    y = rng.standard_normal(1001) * 10.0 ** rng.integers(-30, 30, 1001)
+    count = np.arange(1001, dtype=float)  # a whole-number column
+    y[5] = np.nan
+    status = np.zeros(1001, dtype=int)
+    if failed:
+        status[[3, 1000]] = [3, 2]
+    table = Table(["x", "y", "n"], {"x": "kg", "y": "m", "n": ""}, {"x": x, "y": y, "n": count},
+                  status)  # fmt: skip
+    text = b"".join(bytes(piece) for piece in to_csv(table)).decode()
+    lines = text.split("\n")
+    assert lines[0] == "x [kg],y [m],n,status" and lines[-1] == ""
+    rows = [line.split(",") for line in lines[1:-1]]
+    assert len(rows) == 1001 and all(len(row) == 4 for row in rows)
+    for i, (a, b, n, code) in enumerate(rows):
+        shortest = repr(float(x[i]))  # 802.2; a whole 800.0 is written 800
+        assert a == shortest.removesuffix(".0") and float(a) == x[i]
+        assert (b == "") if i == 5 else float(b) == y[i]
+        assert n == str(i) and int(code) == status[i]
