@@ -48,6 +48,21 @@ def test_help_loads_neither_pydantic_nor_numpy_nor_rich():
     assert done.stderr.strip().splitlines()[-1] == "HEAVY []"
 
 
+def test_a_plain_batch_on_a_pipe_loads_neither_typer_nor_rich():
+    """`mdcalc run PATH --json` takes the direct path, and its summary on a pipe is
+    the plain text rich would print: neither is imported (issue 22)."""
+    probe = PROBE.replace('{{"scipy", "matplotlib", "pint"}}', '{{"typer", "rich", "click"}}')
+    args = ["run", str(CASES / "braking"), "--jobs", "1", "--json"]
+    done = subprocess.run(
+        [sys.executable, "-c", probe.format(args=args)],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
+    assert "mdcalc run: " in done.stderr  # the summary was printed
+    assert done.stderr.strip().splitlines()[-1] == "HEAVY []"
+
+
 def test_closed_form_braking_does_not_import_scipy():
     assert heavy_modules("braking", str(CASES / "braking" / "lecture.toml")) == "HEAVY []"
 
