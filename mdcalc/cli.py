@@ -193,9 +193,9 @@ def check_command(
         from rich.table import Table
 
         from mdcalc.check import check_paths, collect
-        from mdcalc.pool import default_jobs
+        from mdcalc.pool import jobs_for
 
-        workers = jobs or default_jobs(len(collect(paths)))
+        workers = jobs_for(jobs, len(collect(paths)))
         outcome = check_paths(paths, workers, limit_of(time_limit))
         table = Table(title="mdcalc check", title_justify="left")
         for column in ("file", "result", "expected", "got", "tolerance", ""):
@@ -287,7 +287,7 @@ def sweep_command(
     """
 
     def body() -> int:
-        from mdcalc.pool import default_jobs
+        from mdcalc.pool import jobs_for
         from mdcalc.sweep import evaluate, parse_vary, plan, to_csv, to_json
         from mdcalc.terminal import print_sweep, progress
 
@@ -296,7 +296,7 @@ def sweep_command(
         from mdcalc.cluster import executor, scheduler_of
 
         sweep = plan(case, [parse_vary(v) for v in vary])
-        workers = jobs or default_jobs(sweep.points)
+        workers = jobs_for(jobs, sweep.points)
         with (
             executor(scheduler_of(scheduler), workers) as mapper,
             progress(sweep.points) as advance,

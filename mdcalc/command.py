@@ -150,7 +150,7 @@ def run_batch(
         from mdcalc.batch import FileRunner, RunOptions, lost_file, worst_exit
         from mdcalc.cluster import executor, scheduler_of
         from mdcalc.errors import STATUS_OF_EXIT
-        from mdcalc.pool import collect, default_jobs
+        from mdcalc.pool import collect, jobs_for
         from mdcalc.terminal import print_run_summary
 
         files = collect(paths, outputs=out is not None or report_dir is not None)
@@ -162,7 +162,7 @@ def run_batch(
             raise InputError(clash.path, [Problem(f"--report-dir: {why}")])
         if not files:
             raise InputError(" ".join(map(str, paths)), [Problem("no *.toml case files here")])
-        workers = jobs or default_jobs(len(files))
+        workers = jobs_for(jobs, len(files))
         text = not as_json and out is None
         width = shutil.get_terminal_size().columns if sys.stdout.isatty() else 140
         options = RunOptions(

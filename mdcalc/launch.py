@@ -33,6 +33,8 @@ def direct_run(argv: list[str]) -> tuple[str, str, bool, bool] | None:
     flags = [arg for arg in argv[1:] if arg.startswith("-")]
     if len(cases) != 1 or not cases[0] or any(flag not in DIRECT_FLAGS for flag in flags):
         return None
+    if not _readable_or_missing(cases[0]):
+        return None
     return argv[0], cases[0], "--json" in flags, "--debug" in flags
 
 
@@ -48,16 +50,27 @@ def direct_batch(argv: list[str]) -> tuple[list[str], int, bool, bool] | None:
     for arg in rest:
         if arg in ("--jobs", "-j") or arg.startswith("--jobs="):
             value = arg.partition("=")[2] if "=" in arg else next(rest, "")
-            if not (value.isascii() and value.isdigit()):
-                return None  # typer says what is wrong with it
+            if not (value.isascii() and value.isdigit()) or len(value) > 9:
+                return None  # typer says what is wrong with it (or takes a huge number)
             jobs = int(value)
         elif arg in DIRECT_FLAGS:
             as_json, debug = as_json or arg == "--json", debug or arg == "--debug"
-        elif arg.startswith("-") or not arg:
+        elif arg.startswith("-") or not arg or not _readable_or_missing(arg):
             return None
         else:
             paths.append(arg)
     return (paths, jobs, as_json, debug) if paths else None
+
+
+def _readable_or_missing(path: str) -> bool:
+    """What typer's path arguments let through (click.Path(readable=True)): a path that
+    is not there (the body says so), or one this process may read; an unreadable one
+    goes to typer, which refuses it before anything runs."""
+    try:
+        os.stat(path)
+    except OSError:
+        return True
+    return os.access(path, os.R_OK)
 
 
 def _completing() -> bool:

@@ -105,6 +105,12 @@ def default_jobs(count: int) -> int:
     return max(1, min(os.cpu_count() or 1, count))
 
 
+def jobs_for(jobs: int, count: int) -> int:
+    """The processes for ``count`` items: ``jobs`` (0: :func:`default_jobs`), never
+    more than the items (a fork pool starts every worker at once)."""
+    return max(1, min(jobs, count)) if jobs else default_jobs(count)
+
+
 def warm() -> None:
     """Import what every worker needs, once, before the workers are forked."""
     import mdcalc.casefile  # noqa: F401

@@ -614,7 +614,9 @@ def plain_summary(
     (printed with ``markup=False``); None where only rich can lay it out. The summary
     of ``mdcalc run`` on a pipe."""
     table = _plain_table("", header, rows, right, True, width)
-    plain = [_literal(line) for line in before] + [_narrow(line) for line in after]
+    # markup=False still turns ":smile:" into an emoji in rich: such a line goes to rich
+    plain = [_literal(line) for line in before]
+    plain += [_narrow(line) and not _EMOJI.search(line) for line in after]
     wrapped = [_wrap(line, width) for line in before + after]
     if table is None or not all(plain) or any(w is None for w in wrapped):
         return None

@@ -57,6 +57,29 @@ def test_a_bad_expectation_names_its_key_in_the_expect_table(write_case, cli):
     assert result.stderr.startswith(f"{path}:{line}: error: expect.lecture_time.abs: got -1.0")
 
 
+@pytest.mark.parametrize(
+    "body",
+    [
+        "[vehicle]\nx = {\n  a = 1,\n}\n",  # TOML 1.1: newlines and a trailing comma
+        "[vehicle]\nx = {a = 1,}\n",
+        'title = "\\e"\n',  # TOML 1.1 escapes
+        'title = "\\x41"\n',
+        "[vehicle]\nx = 07:32\n",  # TOML 1.1: a time without seconds
+    ],
+    ids=["inline-newline", "inline-comma", "escape-e", "escape-x", "time-hh-mm"],
+)
+def test_case_files_are_toml_1_0_as_pythons_tomllib_reads_them(write_case, cli, body):
+    """tomli reads the case files (compiled: faster); pinned below 2.4, which reads TOML
+    1.1, so that a file is valid exactly when Python 3.11's tomllib says so."""
+    import tomllib
+
+    text = 'problem = "braking"\n' + body
+    with pytest.raises(tomllib.TOMLDecodeError):
+        tomllib.loads(text)
+    result = cli("braking", write_case(text))
+    assert result.exit_code == 2 and "TOML syntax" in result.stderr
+
+
 # Inputs that crashed the reader (exit 70) before issue 20: each is exit 2, one line.
 HEAD = 'problem = "coupling"\n'
 

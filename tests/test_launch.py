@@ -79,6 +79,8 @@ def test_plain_batches_take_the_direct_path(argv, expected):
         ["run", "cases", "--jobs", "two"],
         ["run", "cases", "--jobs", "٢"],  # a digit, but not 0-9
         ["run", "cases", "-j2"],
+        ["run", "cases", "--jobs", "9" * 5000],  # typer: too large (int() would refuse it)
+        ["run", "cases", "--jobs", "1234567890"],
         ["run", "cases", "--out", "out"],
         ["run", "cases", "--report-dir", "out"],
         ["run", "cases", "--time-limit", "5"],
@@ -93,6 +95,26 @@ def test_every_other_batch_goes_through_typer(argv):
     from mdcalc.launch import direct_batch
 
     assert direct_batch(argv) is None
+
+
+def test_an_unreadable_path_goes_to_typer_which_refuses_it(monkeypatch, tmp_path):
+    """click.Path(readable=True): a path that is there but may not be read is exit 2
+    before anything runs; the direct paths leave it to typer (root reads anything,
+    so the permission is faked)."""
+    import os
+
+    from mdcalc import launch
+    from mdcalc.launch import direct_batch
+
+    there = tmp_path / "b.toml"
+    there.write_text("x = 1\n", encoding="utf-8")
+    monkeypatch.setattr(launch.os, "access", lambda path, mode: str(path) != str(there))
+    assert direct_batch(["run", str(there)]) is None
+    assert direct_batch(["run", LECTURE, str(there)]) is None
+    assert direct_run(["braking", str(there)]) is None
+    assert direct_batch(["run", str(tmp_path / "missing.toml")]) is not None  # the body says
+    assert direct_run(["braking", LECTURE]) is not None
+    assert os.access(LECTURE, os.R_OK)
 
 
 def test_a_batch_completing_goes_through_typer(monkeypatch):

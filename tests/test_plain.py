@@ -224,6 +224,7 @@ def _summary(monkeypatch, rich: bool, failed: list[tuple[str, str]], how: str) -
         ([("x.toml", "internal-error")], "dask tcp://127.0.0.1:8786, 4 workers", False),
         ([("cases/日本.toml", "no-answer")], "p", False),  # wide characters: rich lays out
         ([], "[bold]pool[/bold]", False),  # markup in the first line: rich
+        ([("cases/:smile:.toml", "input-error")], "p", False),  # rich makes it an emoji
     ],
 )
 def test_the_run_summary_on_a_pipe_is_riches_text(monkeypatch, failed, how, plain):

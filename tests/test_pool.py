@@ -62,3 +62,13 @@ def test_folders_are_searched_in_the_order_of_sorted_paths(tmp_path):
     ]
     assert str(found[0].path) == str(tmp_path / ".h.toml")
     assert collect([tmp_path / "z.toml"])[0].out_name == Path("z.json")
+
+
+def test_never_more_processes_than_items():
+    """A fork pool starts every worker at once: --jobs 10**9 over 3 files is 3."""
+    from mdcalc.pool import default_jobs, jobs_for
+
+    assert jobs_for(10**9, 3) == 3
+    assert jobs_for(2, 1000) == 2
+    assert jobs_for(0, 1000) == default_jobs(1000) == min(os.cpu_count() or 1, 1000)
+    assert jobs_for(5, 0) == 1
