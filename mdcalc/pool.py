@@ -74,7 +74,7 @@ def collect(paths: Iterable[Path], outputs: bool = False) -> list[CaseFile]:
 def _toml_files(folder: str) -> list[str]:
     """The ``*.toml`` files under ``folder`` as "/"-separated paths inside it, in the
     order of ``sorted(Path(folder).rglob("*.toml"))`` with ``is_file()`` (what this
-    did before; scandir and string keys are ten times faster on 10⁵ files): links to
+    did before; scandir and string keys: 5000 files in 25 ms, not 51): links to
     files count, links to folders are not followed, unreadable folders are skipped."""
     found: list[str] = []
     stack = [""]
