@@ -440,7 +440,8 @@ def to_json(table: Table, sweep: Plan) -> bytes:
         ],
         "vectorized": table.vectorized,
         "columns": [{"key": k, "unit": table.units.get(k, "")} for k in table.keys],
-        "values": {k: np.asarray(table.columns[k], dtype=float) for k in table.keys},
+        # orjson takes C-contiguous arrays only; a point-by-point column may be a view.
+        "values": {k: np.ascontiguousarray(table.columns[k], dtype=float) for k in table.keys},
         "status": np.asarray(table.status, dtype=np.int64),
     }
     return orjson.dumps(document, option=orjson.OPT_SERIALIZE_NUMPY)

@@ -669,3 +669,25 @@ def test_csv_numbers_read_back_as_the_very_floats(failed, block, monkeypatch):
         assert a == shortest.removesuffix(".0") and float(a) == x[i]
         assert (b == "") if i == 5 else float(b) == y[i]
         assert n == str(i) and int(code) == status[i]
+
+
+@pytest.mark.parametrize(
+    ("case", "vary"),
+    [
+        ("braking/dry.toml", "vehicle.mass=800:3000:3"),
+        ("coupling/example_8_1.toml", "coupling.absorption=0.2:1.2:4"),
+        ("mount/example_9_1.toml", "crank.speed=120:180:3"),
+    ],
+)
+def test_json_out_holds_the_csv_numbers(cli, tmp_path, case, vary):
+    # A kernel's column may be a strided view of a 2-D array (coupling's was: exit 70,
+    # "numpy array is not C contiguous"); the JSON must hold the CSV's very numbers.
+    for suffix in ("csv", "json"):
+        result = cli("sweep", CASES / case, "--vary", vary, "--out", tmp_path / f"g.{suffix}")
+        assert result.exit_code == 0, result.stderr
+    _, rows = read_csv(tmp_path / "g.csv")
+    document = strict_json((tmp_path / "g.json").read_text(encoding="utf-8"))
+    for column in document["columns"]:
+        key = column["key"]
+        from_csv = [float(row[key]) if row[key] else None for row in rows]
+        assert document["values"][key] == from_csv, key
