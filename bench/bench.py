@@ -96,18 +96,30 @@ STARTUP_CASES = [
 ]
 
 
+def console_entry(root: Path) -> tuple[str, str]:
+    """(module, function) of the ``mdcalc`` console script in the checkout at
+    ``root``, as its pyproject.toml names it (``mdcalc.cli.launch:main``; before the
+    layers, ``mdcalc.launch:main``)."""
+    import tomllib
+
+    with (root / "pyproject.toml").open("rb") as handle:
+        entry = tomllib.load(handle)["project"]["scripts"]["mdcalc"]
+    module, _, function = entry.partition(":")
+    return module, function
+
+
 def from_source(root: Path) -> list[str]:
     """mdcalc run from the checkout at ``root`` rather than the installed one (the
     editable install's finder is set aside), in this same interpreter and venv, through
-    that checkout's console script (``mdcalc.launch`` where it has one)."""
-    entry = "mdcalc.launch" if (root / "mdcalc" / "launch.py").exists() else "mdcalc.cli"
+    that checkout's console script."""
+    module, function = console_entry(root)
     code = (
         "import sys\n"
         "sys.meta_path = [f for f in sys.meta_path if 'editable' not in repr(f).lower()]\n"
         f"sys.path.insert(0, {str(root)!r})\n"
-        f"from {entry} import main\n"
+        f"from {module} import {function}\n"
         "sys.argv[0] = 'mdcalc'\n"
-        "main()\n"
+        f"sys.exit({function}())\n"
     )
     return [PYTHON, "-c", code]
 
@@ -237,9 +249,9 @@ def timed(run: Callable[[], object], repeats: int = 5) -> float:
 def mine_hoist() -> None:
     import numpy as np
 
-    from mdcalc.casefile import read_case, validate
     from mdcalc.core import chain as chains
     from mdcalc.core.ode import TooManySteps, linear_oscillator_maxima
+    from mdcalc.input.casefile import read_case, validate
     from mdcalc.problems import mine_hoist
     from mdcalc.problems.mine_hoist.modal import dynamics, first_swing_factors, frequency_ratio
     from mdcalc.problems.mine_hoist.ode_rows import STIFF_RATIO

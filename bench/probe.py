@@ -80,7 +80,7 @@ def finite_json(text: str) -> bool:
 def one(job: tuple[str, str, tuple[str | int, ...], float, float]) -> tuple[Any, ...]:
     from typer.testing import CliRunner
 
-    from mdcalc.cli import app
+    from mdcalc.cli.app import app
 
     relative, name, path, value, budget = job
     with tempfile.NamedTemporaryFile("w", suffix=".toml", delete=False) as handle:

@@ -3,7 +3,7 @@
 A problem lists the ways it can compute its key results as :class:`Method` values;
 :func:`compare` runs each one, measures its run time, and computes the relative
 error of each key result against the reference method. The result is a
-:class:`~mdcalc.report.MethodsTable` ready for the report.
+:class:`~mdcalc.output.report.MethodsTable` ready for the report.
 
 A method returns ``{key: value}`` for the key results it computes, or raises
 :class:`NotApplicable` with the reason (the row then shows the reason instead of
@@ -25,7 +25,7 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 
 from mdcalc.core import budget
-from mdcalc.report import MethodQuantity, MethodRow, MethodsTable
+from mdcalc.output.report import MethodQuantity, MethodRow, MethodsTable
 
 #: Cheap methods are repeated until this much time has passed, so that a
 #: microsecond-scale run time is a mean over many calls, not timer noise.

@@ -18,13 +18,13 @@ MDCALC = Path(sys.executable).parent / "mdcalc"
 
 
 class ConsoleScript:
-    """The console script (:func:`mdcalc.launch.main`: a plain problem run past typer,
+    """The console script (:func:`mdcalc.cli.launch.main`: a plain problem run past typer,
     the rest through it) in the shape typer's CliRunner invokes."""
 
     name = "mdcalc"
 
     def main(self, args: Any = (), prog_name: str = "mdcalc", **extra: Any) -> None:
-        from mdcalc.launch import main
+        from mdcalc.cli.launch import main
 
         saved = sys.argv
         sys.argv = [prog_name, *args]
@@ -40,7 +40,7 @@ def cli(monkeypatch):
     returns click's Result (exit_code, stdout, stderr)."""
     import typer.testing
 
-    from mdcalc.cli import app
+    from mdcalc.cli.app import app
 
     monkeypatch.setattr(typer.testing, "_get_command", lambda _: ConsoleScript())
     runner = CliRunner()
@@ -102,8 +102,8 @@ def walk_finite(node: Any, where: str = "$") -> None:
 
 def solved(path: Path) -> tuple[Any, Any, list[Any]]:
     """A case file's solver result, report and charts."""
-    from mdcalc.casefile import read_case
-    from mdcalc.runner import solve_text
+    from mdcalc.input.casefile import read_case
+    from mdcalc.runs.runner import solve_text
 
     run = solve_text(read_case(path))
     return run.result, run.report, run.module.charts(run.result)

@@ -1,5 +1,21 @@
-"""The shape of the code: no import circle, no module too long to read, problems
-laid out as the registry's docstring says."""
+"""The shape of the code: the layers of the package and the one way imports run
+between them, no import circle, no module too long to read, problems laid out as the
+registry's docstring says.
+
+The layers, top to bottom (``ls mdcalc/`` shows them)::
+
+    mdcalc (the package's face: no module of it imports it)
+    cli          the console entry, the typer app, command bodies, terminal helpers
+    runs         one case under its budget, pool, cluster, batch, check, sweep, study
+    problems     the registry, one package or module per problem, problems.common
+    methods | input | output     one layer: the Methods machinery, case files, reports
+    core         maths shared by several problems
+    errors, _version             the leaves: import nothing of mdcalc
+
+A module imports its own layer or the layers below it, never one above, and counts
+every import it makes: at module level, deferred inside a function, and under
+``TYPE_CHECKING`` (it never runs, but a reader of the code sees it just the same).
+"""
 
 from __future__ import annotations
 
@@ -25,20 +41,13 @@ def modules() -> dict[str, Path]:
 
 
 def imports_of(name: str, path: Path, known: set[str]) -> set[str]:
-    """The mdcalc modules ``path`` imports anywhere in it (module level or inside a
-    function: a deferred import closes a circle just the same), TYPE_CHECKING
-    blocks excepted (they never run)."""
+    """The mdcalc modules ``path`` imports anywhere in it: at module level, inside a
+    function (a deferred import closes a circle just the same) or under
+    TYPE_CHECKING (a reader sees that circle too)."""
     tree = ast.parse(path.read_text(encoding="utf-8"))
     package = name if path.name == "__init__.py" else name.rpartition(".")[0]
-    skipped: set[int] = set()
-    for node in ast.walk(tree):
-        test = node.test if isinstance(node, ast.If) else None
-        if test is not None and "TYPE_CHECKING" in ast.unparse(test):
-            skipped.update(id(inner) for inner in ast.walk(node) if inner is not node)
     found: set[str] = set()
     for node in ast.walk(tree):
-        if id(node) in skipped:
-            continue
         if isinstance(node, ast.Import):
             found.update(alias.name for alias in node.names)
         elif isinstance(node, ast.ImportFrom):
@@ -87,10 +96,10 @@ def test_the_import_graph_has_no_circle():
 def test_the_circle_finder_finds_a_circle():
     # The guard above can fail: a deferred import back is a circle.
     graph = import_graph()
-    graph["mdcalc.pool"] = graph["mdcalc.pool"] | {"mdcalc.check"}
+    graph["mdcalc.runs.pool"] = graph["mdcalc.runs.pool"] | {"mdcalc.runs.check"}
     circle = find_circle(graph)
     assert circle is not None and circle[0] == circle[-1], circle
-    assert {"mdcalc.check", "mdcalc.pool"} <= set(circle), circle
+    assert {"mdcalc.runs.check", "mdcalc.runs.pool"} <= set(circle), circle
 
 
 def test_deferred_and_relative_imports_are_seen(tmp_path):
@@ -100,14 +109,15 @@ def test_deferred_and_relative_imports_are_seen(tmp_path):
         "from typing import TYPE_CHECKING\n"
         "from .case import Case\n"
         "if TYPE_CHECKING:\n"
-        "    from mdcalc.plot import Chart\n"
+        "    from mdcalc.output.plot import Chart\n"
         "def f():\n"
         "    from mdcalc import methods\n",
         encoding="utf-8",
     )
-    known = {"mdcalc.problems.demo.case", "mdcalc.methods", "mdcalc.plot", "mdcalc"}
+    known = {"mdcalc.problems.demo.case", "mdcalc.methods", "mdcalc.output.plot", "mdcalc"}
     assert imports_of("mdcalc.problems.demo.report", source, known) == {
         "mdcalc.problems.demo.case",
+        "mdcalc.output.plot",
         "mdcalc.methods",
     }
 
@@ -125,3 +135,132 @@ def test_every_problem_shows_the_registry_face(name):
         assert callable(getattr(module, attribute, None)), f"{name} lacks {attribute}"
     if hasattr(module, "__path__"):  # a package: its face is all it exports
         assert set(module.__all__) >= {"Case", "solve", "report", "template"}
+
+
+# ----------------------------------------------------------------------------- layers
+
+#: The layers, top (0) to bottom; a module's layer is the first part of its name
+#: inside mdcalc. methods, input and output are one layer (rank 4).
+RANK = {
+    "mdcalc": 0,
+    "cli": 1,
+    "runs": 2,
+    "problems": 3,
+    "methods": 4,
+    "input": 4,
+    "output": 4,
+    "core": 5,
+    "errors": 6,
+    "_version": 6,
+}
+#: The edges between the parts of the one middle layer, each that exists (a new one
+#: is a decision to write down here, not an accident): methods fills the Report
+#: value; calculation documents read the case file they report on; charts and
+#: documents are written through the user's-files rules.
+SIBLING_EDGES = {("methods", "output"), ("output", "input")}
+#: What may stand loose in mdcalc/ beside the layers' folders.
+LOOSE = {"__init__.py", "_version.py", "errors.py", "methods.py"}
+
+
+def part(module: str) -> str:
+    """The layer part of a module's name: ``mdcalc.runs.study.spec`` -> ``runs``."""
+    return module.split(".")[1] if "." in module else module
+
+
+def problem_of(module: str) -> str | None:
+    """``mdcalc.problems.hoist.rope`` -> ``hoist``; None for the registry itself."""
+    parts = module.split(".")
+    return parts[2] if len(parts) > 2 and parts[1] == "problems" else None
+
+
+def layer_breaches(graph: dict[str, set[str]]) -> list[str]:
+    """Every import that runs against the layers: upwards, to the package's face, a
+    problem into another problem, or between the middle layer's parts outside
+    SIBLING_EDGES."""
+    found = []
+    for module, targets in sorted(graph.items()):
+        for target in sorted(targets):
+            a, b = part(module), part(target)
+            if b == "mdcalc" or RANK[b] < RANK[a]:
+                found.append(f"{module} -> {target}: {b} is above {a}")
+            elif RANK[a] == RANK[b] and a != b and (a, b) not in SIBLING_EDGES:
+                found.append(f"{module} -> {target}: {a} -> {b} is not in SIBLING_EDGES")
+            elif a == b == "problems" and problem_of(target) not in (None, "common"):
+                if problem_of(module) != problem_of(target):
+                    found.append(f"{module} -> {target}: a problem imports another")
+    return found
+
+
+def test_every_module_has_a_layer():
+    assert {part(name) for name in modules()} <= set(RANK), set(map(part, modules())) - set(RANK)
+
+
+def test_imports_run_one_way_down_the_layers():
+    assert layer_breaches(import_graph()) == []
+
+
+def test_the_sibling_edges_written_down_are_the_ones_there():
+    graph = import_graph()
+    edges = {
+        (part(module), part(target))
+        for module, targets in graph.items()
+        for target in targets
+        if RANK[part(module)] == RANK[part(target)] == 4 and part(module) != part(target)
+    }
+    assert edges == SIBLING_EDGES
+
+
+@pytest.mark.parametrize(
+    ("module", "target", "says"),
+    [
+        ("mdcalc.runs.sweep", "mdcalc.cli.terminal", "cli is above runs"),
+        ("mdcalc.core.ode", "mdcalc.methods", "methods is above core"),
+        ("mdcalc.input.model", "mdcalc.problems", "problems is above input"),
+        ("mdcalc.errors", "mdcalc.core.units", "core is above errors"),
+        ("mdcalc.output.report", "mdcalc.methods", "output -> methods is not in SIBLING"),
+        ("mdcalc.problems.braking", "mdcalc.problems.clutch", "a problem imports another"),
+        ("mdcalc.problems.hoist.rope", "mdcalc.problems.mount.kernel", "a problem imports"),
+        ("mdcalc.runs.runner", "mdcalc", "mdcalc is above runs"),
+    ],
+)
+def test_a_breach_of_the_layers_is_found(module, target, says):
+    # The rule above can fail: each kind of wrong import, added to the real graph.
+    graph = import_graph()
+    graph[module] = graph.get(module, set()) | {target}
+    breaches = layer_breaches(graph)
+    assert len(breaches) == 1 and says in breaches[0], breaches
+
+
+def test_a_problem_may_import_what_problems_share():
+    graph = import_graph()
+    assert "mdcalc.problems.common.vehicle" in graph["mdcalc.problems.braking"]
+    assert layer_breaches(graph) == []
+
+
+def test_the_tree_shows_the_layers():
+    loose = {p.name for p in PACKAGE.iterdir() if p.suffix == ".py"}
+    folders = {p.name for p in PACKAGE.iterdir() if (p / "__init__.py").exists()}
+    assert loose == LOOSE and len(loose) <= 6
+    assert folders == {"cli", "runs", "problems", "input", "output", "core"}
+
+
+def test_no_package_init_imports_eagerly():
+    # A package's __init__ runs on the import of any module inside it: the layers'
+    # own carry a docstring only (mdcalc's imports its leaf _version alone), so a
+    # piped scene pays for no sibling it does not use (tests/test_imports.py).
+    for init in [PACKAGE / "__init__.py", *(PACKAGE / name / "__init__.py" for name in RANK)]:
+        if not init.exists():
+            continue
+        tree = ast.parse(init.read_text(encoding="utf-8"))
+        imported = [
+            ast.unparse(node) for node in tree.body if isinstance(node, ast.Import | ast.ImportFrom)
+        ]
+        allowed = ["from mdcalc._version import __version__"] if init.parent == PACKAGE else []
+        if init.parent.name == "problems":
+            allowed = [
+                "from __future__ import annotations",
+                "import importlib",
+                "from dataclasses import dataclass",
+                "from typing import TYPE_CHECKING, Any, Protocol, cast",
+            ]
+        assert imported == allowed, init

@@ -12,7 +12,7 @@ import pytest
 
 from mdcalc.core import budget
 from mdcalc.methods import Method, compare
-from mdcalc.report import MethodQuantity
+from mdcalc.output.report import MethodQuantity
 from tests.conftest import CASES
 
 Q = [MethodQuantity("x", "x", "m")]

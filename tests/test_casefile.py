@@ -6,8 +6,8 @@ from pathlib import Path
 
 import pytest
 
-from mdcalc.casefile import _key_lines, write_toml_atomic
 from mdcalc.errors import InputError
+from mdcalc.input.casefile import _key_lines, write_toml_atomic
 from tests.conftest import CASES
 
 
@@ -106,7 +106,7 @@ def test_pathological_toml_is_a_plain_input_error(write_case, cli, body, says):
 def test_the_deepest_shipped_case_is_well_inside_the_depth_limit():
     import tomllib
 
-    from mdcalc.casefile import MAX_DEPTH, _depth
+    from mdcalc.input.casefile import MAX_DEPTH, _depth
 
     deepest = max(_depth(tomllib.loads(p.read_text("utf-8"))) for p in CASES.rglob("*.toml"))
     assert deepest <= MAX_DEPTH // 2, deepest

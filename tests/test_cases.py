@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from mdcalc.check import collect
+from mdcalc.runs.check import collect
 from tests.conftest import CASES
 
 #: Case files; the study files of cases/studies are checked by `mdcalc check` and
@@ -25,11 +25,11 @@ def test_every_problem_has_cases_and_extreme_cases():
 def test_case_meets_its_expectations_with_finite_json(path):
     # One run per file: the [expect] table as `mdcalc check` reads it, and the JSON
     # strict (no NaN, no Infinity) with every number finite.
-    from mdcalc.casefile import read_case
-    from mdcalc.check import within
-    from mdcalc.model import CaseBase
-    from mdcalc.report import to_json
-    from mdcalc.runner import run_text
+    from mdcalc.input.casefile import read_case
+    from mdcalc.input.model import CaseBase
+    from mdcalc.output.jsondoc import to_json
+    from mdcalc.runs.check import within
+    from mdcalc.runs.runner import run_text
     from tests.conftest import strict_json, walk_finite
 
     case = read_case(path)

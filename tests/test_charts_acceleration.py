@@ -14,9 +14,9 @@ from typing import Any
 
 import pytest
 
-from mdcalc.casefile import read_case
-from mdcalc.plot import Chart, Series
-from mdcalc.runner import solve_text
+from mdcalc.input.casefile import read_case
+from mdcalc.output.plot import Chart, Series
+from mdcalc.runs.runner import solve_text
 from tests.conftest import CASES
 
 G0 = 9.80665  # standard gravity, the program's default [m/s²]

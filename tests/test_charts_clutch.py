@@ -14,9 +14,9 @@ from pathlib import Path
 
 import pytest
 
-from mdcalc.casefile import read_case
-from mdcalc.plot import Chart, Series
-from mdcalc.runner import solve_text
+from mdcalc.input.casefile import read_case
+from mdcalc.output.plot import Chart, Series
+from mdcalc.runs.runner import solve_text
 from tests.conftest import CASES
 
 
@@ -176,8 +176,8 @@ def test_charts_import_no_numpy():
     probe = (
         "import sys\n"
         "from pathlib import Path\n"
-        "from mdcalc.casefile import read_case\n"
-        "from mdcalc.runner import solve_text\n"
+        "from mdcalc.input.casefile import read_case\n"
+        "from mdcalc.runs.runner import solve_text\n"
         f"run = solve_text(read_case(Path({case!r})))\n"
         "assert run.module.charts(run.result)\n"
         "print(sorted(m for m in sys.modules if m.split('.')[0] in ('numpy', 'scipy')))\n"

@@ -387,8 +387,8 @@ def test_charts_print_nothing_and_import_neither_numpy_nor_matplotlib(capsys):
     assert capsys.readouterr() == ("", "")
     code = (
         "import sys, mdcalc.problems.coupling; print('numpy' in sys.modules)\n"
-        "from mdcalc.casefile import read_case\n"
-        "from pathlib import Path\nfrom mdcalc.runner import solve_text\n"
+        "from mdcalc.input.casefile import read_case\n"
+        "from pathlib import Path\nfrom mdcalc.runs.runner import solve_text\n"
         f"run = solve_text(read_case(Path({str(CASES / 'coupling' / 'harmonic.toml')!r})))\n"
         "run.module.charts(run.result); print('matplotlib' in sys.modules)"
     )

@@ -28,8 +28,8 @@ MECHANISM = CASES / "mechanism"
 
 
 def _run(path: Path):
-    from mdcalc.casefile import read_case
-    from mdcalc.runner import solve_text
+    from mdcalc.input.casefile import read_case
+    from mdcalc.runs.runner import solve_text
 
     run = solve_text(read_case(path))
     return run.module, run.result

@@ -25,8 +25,8 @@ HOIST = CASES / "mine-hoist"
 
 
 def _run(path: Path):
-    from mdcalc.casefile import read_case
-    from mdcalc.runner import solve_text
+    from mdcalc.input.casefile import read_case
+    from mdcalc.runs.runner import solve_text
 
     run = solve_text(read_case(path))
     return run.module, run.result

@@ -24,8 +24,8 @@ from tests.conftest import CASES, chart
 
 
 def solved(path: Path) -> list[Any]:
-    from mdcalc.casefile import read_case
-    from mdcalc.runner import solve_text
+    from mdcalc.input.casefile import read_case
+    from mdcalc.runs.runner import solve_text
 
     run = solve_text(read_case(path))
     return run.module.charts(run.result)

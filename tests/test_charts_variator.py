@@ -26,8 +26,8 @@ from tests.conftest import CASES, chart, series
 
 
 def solved(path: Path) -> tuple[Any, list[Any]]:
-    from mdcalc.casefile import read_case
-    from mdcalc.runner import solve_text
+    from mdcalc.input.casefile import read_case
+    from mdcalc.runs.runner import solve_text
 
     run = solve_text(read_case(path))
     return run.result, run.module.charts(run.result)

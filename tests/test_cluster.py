@@ -24,8 +24,8 @@ def study_path(tmp_path: Path, samples: int) -> Path:
 
 
 def run_on(path: Path, mapper, on_done=None):
-    from mdcalc.casefile import read_case
-    from mdcalc.study import run
+    from mdcalc.input.casefile import read_case
+    from mdcalc.runs.study import run
 
     return run(read_case(path), mapper, time_limit=20.0, on_done=on_done)
 
@@ -56,7 +56,7 @@ def same(a, b) -> None:
 
 
 def test_a_study_on_a_cluster_is_bit_identical_to_the_pool(tmp_path, cluster):
-    from mdcalc.cluster import DaskMapper, PoolMapper
+    from mdcalc.runs.cluster import DaskMapper, PoolMapper
 
     path = study_path(tmp_path, 120)
     pooled = run_on(path, PoolMapper(2))
@@ -66,7 +66,7 @@ def test_a_study_on_a_cluster_is_bit_identical_to_the_pool(tmp_path, cluster):
 
 
 def test_a_killed_worker_has_its_chunk_run_again(tmp_path, cluster):
-    from mdcalc.cluster import DaskMapper, PoolMapper
+    from mdcalc.runs.cluster import DaskMapper, PoolMapper
 
     path = study_path(tmp_path, 300)
     reference = run_on(path, PoolMapper(1))
@@ -88,9 +88,9 @@ def test_a_killed_worker_has_its_chunk_run_again(tmp_path, cluster):
 def test_a_vectorized_study_on_a_cluster_is_bit_identical(tmp_path, cluster, monkeypatch):
     import importlib
 
-    from mdcalc.cluster import DaskMapper, PoolMapper
+    from mdcalc.runs.cluster import DaskMapper, PoolMapper
 
-    evaluate = importlib.import_module("mdcalc.study.evaluate")
+    evaluate = importlib.import_module("mdcalc.runs.study.evaluate")
     monkeypatch.setattr(evaluate, "KERNEL_CHUNK", 997)  # many chunks on the cluster
     text = (CASES / "studies" / "braking_adhesion.toml").read_text("utf-8")
     path = tmp_path / "braking.toml"

@@ -76,7 +76,7 @@ def test_help_offers_install_completion():
 
 
 def test_an_absolute_path_completes_from_the_root():
-    from mdcalc.cli import complete_case
+    from mdcalc.cli.app import complete_case
 
     assert complete_case("/") == []  # folders only: left to the shell
     top = next(p for p in (ROOT / "cases").iterdir() if p.suffix == "" and p.is_dir())

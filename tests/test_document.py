@@ -12,7 +12,8 @@ from pathlib import Path
 
 import pytest
 
-from mdcalc.report import Report, format_value, grids, render_rich
+from mdcalc.output.report import Report, format_value, grids
+from mdcalc.output.text import render_rich
 from tests.conftest import CASES
 
 CRANE = CASES / "hoist" / "crane.toml"  # two charts
@@ -137,9 +138,9 @@ def test_the_html_report_holds_what_the_json_holds(cli, tmp_path, case):
 
 
 def test_html_charts_are_inline_svg_and_nothing_comes_from_a_network(cli, tmp_path):
-    from mdcalc.casefile import read_case
+    from mdcalc.input.casefile import read_case
     from mdcalc.problems import PROBLEMS
-    from mdcalc.runner import solve_text
+    from mdcalc.runs.runner import solve_text
 
     text, _ = _report(cli, tmp_path, CRANE, ".html")
     html = page(text)
@@ -157,7 +158,7 @@ def test_html_charts_are_inline_svg_and_nothing_comes_from_a_network(cli, tmp_pa
 
 
 def test_markdown_tables_read_back_with_the_same_cells(cli, tmp_path):
-    from mdcalc.runner import run_case
+    from mdcalc.runs.runner import run_case
 
     text, _ = _report(cli, tmp_path, LECTURE, ".md")
     tables = markdown_tables(text)
@@ -256,7 +257,7 @@ def assert_no_empty_column(report: Report) -> None:
 
     from rich.console import Console
 
-    from mdcalc.document import Document, to_html, to_markdown
+    from mdcalc.output.document import Document, to_html, to_markdown
 
     for grid in grids(report):
         for index in range(len(grid.roles)):
@@ -275,7 +276,7 @@ def assert_no_empty_column(report: Report) -> None:
 
 
 def test_a_methods_note_no_method_has_is_not_a_column():
-    from mdcalc.report import MethodQuantity, MethodRow, MethodsTable
+    from mdcalc.output.report import MethodQuantity, MethodRow, MethodsTable
 
     table = MethodsTable(
         "Methods",
@@ -318,7 +319,7 @@ def test_run_writes_a_report_per_file_and_an_index(cli, tmp_path):
 
 
 def test_a_methods_error_column_goes_with_its_value_column():
-    from mdcalc.report import MethodQuantity, MethodRow, MethodsTable
+    from mdcalc.output.report import MethodQuantity, MethodRow, MethodsTable
 
     table = MethodsTable(
         "M",
@@ -370,8 +371,8 @@ def test_chart_pictures_never_overwrite_the_case_or_the_plot(cli, tmp_path):
 
 
 def test_notes_appear_once_and_markdown_text_stays_literal():
-    from mdcalc.document import Document, to_markdown
-    from mdcalc.report import Note
+    from mdcalc.output.document import Document, to_markdown
+    from mdcalc.output.report import Note
 
     report = Report("braking", "A &amp; ~~b~~ <c> #", notes=[Note("warning", "time budget: ode")])
     report.cut = ["ode"]

@@ -1,4 +1,4 @@
-"""Independent tests of the restricted formula evaluator ``mdcalc.expr`` (brief §8:
+"""Independent tests of the restricted formula evaluator ``mdcalc.input.expr`` (brief §8:
 "formulas must be evaluated by a restricted expression evaluator -- arithmetic and
 whitelisted math functions only, never Python ``eval`` of file content").
 
@@ -30,7 +30,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from tomli_w import dumps as toml_dumps
 
-from mdcalc.expr import ExpressionError, check_name, parse
+from mdcalc.input.expr import ExpressionError, check_name, parse
 from tests.conftest import assert_no_traceback
 
 VARIABLES = ("phi", "omega")

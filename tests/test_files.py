@@ -14,7 +14,7 @@ from pathlib import Path
 import pytest
 
 from mdcalc.errors import InputError
-from mdcalc.files import MAX_CASE_BYTES, read_regular, write_atomic
+from mdcalc.input.files import MAX_CASE_BYTES, read_regular, write_atomic
 from tests.conftest import CASES, MDCALC
 
 EXAMPLE = CASES / "coupling" / "example_8_1.toml"
@@ -79,7 +79,7 @@ def test_a_case_file_is_read_whole_whatever_its_size(tmp_path, size):
 def test_a_file_that_grows_while_read_is_read_to_the_cap(tmp_path, monkeypatch):
     """fstat said 10 bytes; 40 are there when read: all 40 are read (cap 64), and
     past the cap it is refused as before."""
-    from mdcalc import files
+    from mdcalc.input import files
 
     path = tmp_path / "case.toml"
     path.write_bytes(b"x" * 40)
@@ -170,6 +170,6 @@ def test_a_replaced_file_keeps_its_mode_and_a_new_one_gets_the_umasks(tmp_path, 
 
 def test_files_module_is_light():
     # It serves --help-free paths only, but must not pull anything heavy in.
-    code = "import sys, mdcalc.files; print(sorted({'pydantic', 'numpy'} & set(sys.modules)))"
+    code = "import sys, mdcalc.input.files; print(sorted({'pydantic', 'numpy'} & set(sys.modules)))"
     done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
     assert done.stdout.strip() == "[]"

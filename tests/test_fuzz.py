@@ -44,13 +44,13 @@ from hypothesis import strategies as st
 from pydantic import BaseModel
 from pydantic.fields import FieldInfo
 
-import mdcalc.model
+import mdcalc.input.model
 from mdcalc.problems import PROBLEMS
 from tests.conftest import CASES, assert_no_traceback, strict_json, walk_finite
 
 NAMES = list(PROBLEMS)
-#: |x| <= this for every number of a case file (mdcalc.model); 1e18 if not declared there.
-LIMIT = float(getattr(mdcalc.model, "MAGNITUDE_LIMIT", 1e18))
+#: |x| <= this for every number of a case file (mdcalc.input.model); 1e18 if not declared there.
+LIMIT = float(getattr(mdcalc.input.model, "MAGNITUDE_LIMIT", 1e18))
 #: A seed whose unmodified run (text) takes longer is left out of the valid draws.
 SEED_SECONDS = 1.0
 #: Valid draws run with --time-limit BUDGET: each run must end within BUDGET + 1 s
@@ -500,7 +500,7 @@ def some_number(data: st.DataObject, seed: dict[str, Any], here: Node) -> tuple[
 
 def _not_a_quantity(text: str) -> bool:
     """A string pint cannot read: "3", "m" or "pi" are quantities now (issue 9)."""
-    from mdcalc.quantities import QuantityError, convert
+    from mdcalc.input.quantities import QuantityError, convert
 
     for unit in ("-", "m", "N·m/rad", "rpm"):
         try:

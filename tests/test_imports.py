@@ -12,7 +12,7 @@ from tests.conftest import CASES
 PROBE = """
 import sys
 sys.argv = ["mdcalc", *{args!r}]
-from mdcalc.launch import main
+from mdcalc.cli.launch import main
 try:
     main()
 except SystemExit:
@@ -144,8 +144,8 @@ DECLARED = """
 import json, sys
 from pathlib import Path
 from mdcalc.errors import InputError
-from mdcalc.report import MethodsTable
-from mdcalc.runner import run_case
+from mdcalc.output.report import MethodsTable
+from mdcalc.runs.runner import run_case
 out = {}
 for name in sys.argv[1:]:
     try:
@@ -161,7 +161,7 @@ print(json.dumps(out))
 
 UNDECLARED = """
 import contextlib, io, sys
-from mdcalc.launch import main
+from mdcalc.cli.launch import main
 HEAVY = {"scipy", "pint", "matplotlib"}
 for name in sys.argv[1:]:
     problem = name.split("::")[0]
@@ -241,7 +241,7 @@ def test_a_scene_skips_pydantic_plugin_discovery_but_not_the_loader():
     assert done.stderr.strip().splitlines()[-1] == "HEAVY []"
     forwarded = (
         "import sys\n"
-        "from mdcalc.startup import no_plugin_discovery\n"
+        "from mdcalc.cli.startup import no_plugin_discovery\n"
         "import os; os.environ['PYDANTIC_DISABLE_PLUGINS'] = '__all__'\n"
         "no_plugin_discovery()\n"
         "from pydantic.plugin._loader import get_plugins, PYDANTIC_ENTRY_POINT_GROUP\n"

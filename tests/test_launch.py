@@ -9,7 +9,7 @@ import sys
 import pytest
 from typer.testing import CliRunner
 
-from mdcalc.launch import direct_run
+from mdcalc.cli.launch import direct_run
 from tests.conftest import CASES
 
 LECTURE = str(CASES / "braking" / "lecture.toml")
@@ -64,7 +64,7 @@ def test_everything_else_goes_through_typer(argv):
     ],
 )
 def test_plain_batches_take_the_direct_path(argv, expected):
-    from mdcalc.launch import direct_batch
+    from mdcalc.cli.launch import direct_batch
 
     assert direct_batch(argv) == expected
 
@@ -92,7 +92,7 @@ def test_plain_batches_take_the_direct_path(argv, expected):
     ],
 )
 def test_every_other_batch_goes_through_typer(argv):
-    from mdcalc.launch import direct_batch
+    from mdcalc.cli.launch import direct_batch
 
     assert direct_batch(argv) is None
 
@@ -101,8 +101,8 @@ def test_an_unreadable_path_goes_to_typer_which_refuses_it(monkeypatch, tmp_path
     """click.Path(readable=True): a path that is there but may not be read is exit 2
     before anything runs; the direct paths leave it to typer (root reads anything,
     so the permission is faked)."""
-    from mdcalc import launch
-    from mdcalc.launch import direct_batch
+    from mdcalc.cli import launch
+    from mdcalc.cli.launch import direct_batch
 
     there = tmp_path / "b.toml"
     there.write_text("x = 1\n", encoding="utf-8")
@@ -115,7 +115,7 @@ def test_an_unreadable_path_goes_to_typer_which_refuses_it(monkeypatch, tmp_path
 
 
 def test_a_batch_completing_goes_through_typer(monkeypatch):
-    from mdcalc.launch import direct_batch
+    from mdcalc.cli.launch import direct_batch
 
     monkeypatch.setenv("_MDCALC_COMPLETE", "complete_bash")
     assert direct_batch(["run", "cases"]) is None
@@ -137,11 +137,11 @@ SCENES = [
 
 
 def _console_script(argv: list[str], monkeypatch):
-    """``argv`` through the console script (mdcalc.launch.main), in-process."""
+    """``argv`` through the console script (mdcalc.cli.launch.main), in-process."""
     import typer.testing
 
-    from mdcalc.cli import app
-    from mdcalc.launch import main
+    from mdcalc.cli.app import app
+    from mdcalc.cli.launch import main
 
     class Script:
         name = "mdcalc"
@@ -158,7 +158,7 @@ def _console_script(argv: list[str], monkeypatch):
 @pytest.mark.parametrize("argv", SCENES, ids=[" ".join(a[:1] + a[2:]) for a in SCENES])
 def test_the_direct_path_and_typer_give_the_same(argv, monkeypatch, write_case):
     from mdcalc import methods
-    from mdcalc.cli import app
+    from mdcalc.cli.app import app
 
     monkeypatch.setattr(methods, "timed", lambda run: (run(), 1e-6))  # no timer noise
     typer_way = CliRunner().invoke(app, argv)
@@ -186,8 +186,8 @@ def test_a_direct_batch_and_typer_give_the_same(argv, monkeypatch):
     import re
 
     from mdcalc import methods
-    from mdcalc.cli import app
-    from mdcalc.launch import direct_batch
+    from mdcalc.cli.app import app
+    from mdcalc.cli.launch import direct_batch
 
     monkeypatch.setattr(methods, "timed", lambda run: (run(), 1e-6))  # no timer noise
     monkeypatch.setattr(methods, "MIN_TIMING_SECONDS", methods.MIN_TIMING_SECONDS)
@@ -224,7 +224,7 @@ def test_a_bug_on_the_direct_path_is_one_line_and_the_traceback_with_debug(cli, 
 PROBE = """
 import sys
 sys.argv = ["mdcalc", *{args!r}]
-from mdcalc.launch import main
+from mdcalc.cli.launch import main
 try:
     main()
 except SystemExit as exit:

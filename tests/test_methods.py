@@ -5,7 +5,7 @@ from __future__ import annotations
 import pytest
 
 from mdcalc.methods import Method, NotApplicable, compare, relative_error, timed
-from mdcalc.report import MethodQuantity
+from mdcalc.output.report import MethodQuantity
 
 Q = [MethodQuantity("x", "x", "m")]
 

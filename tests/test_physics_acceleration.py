@@ -43,8 +43,8 @@ import pytest
 from scipy.integrate import solve_ivp
 from tomli_w import dumps as toml_dumps
 
-from mdcalc.report import to_json
-from mdcalc.runner import run_case
+from mdcalc.output.jsondoc import to_json
+from mdcalc.runs.runner import run_case
 
 TIGHT = 1e-9  # relative tolerance against closed forms
 G0 = 9.80665  # standard gravity, the program's default

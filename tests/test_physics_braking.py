@@ -28,7 +28,7 @@ import pytest
 from scipy.integrate import quad, solve_ivp
 from tomli_w import dumps as toml_dumps
 
-from mdcalc.runner import run_case
+from mdcalc.runs.runner import run_case
 
 TIGHT = 1e-9  # relative tolerance against exact closed forms
 

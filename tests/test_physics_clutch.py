@@ -840,7 +840,7 @@ def test_gain_out_of_range_is_an_input_error(cli, tmp_path: Path, clutch: dict[s
 PROBE = """
 import sys
 sys.argv = ["mdcalc", *{args!r}]
-from mdcalc.launch import main
+from mdcalc.cli.launch import main
 try:
     main()
 except SystemExit:

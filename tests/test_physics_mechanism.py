@@ -461,7 +461,7 @@ def crank_inertia_slope(phi: float) -> float:
 def crank_document(tmp_path_factory) -> dict[str, Any]:
     from typer.testing import CliRunner
 
-    from mdcalc.cli import app
+    from mdcalc.cli.app import app
 
     data = case(
         {"formula": CRANK_TORQUE},

@@ -35,8 +35,8 @@ from scipy.integrate import ode
 from scipy.optimize import brentq, minimize_scalar
 from tomli_w import dumps as toml_dumps
 
-from mdcalc.report import to_json
-from mdcalc.runner import run_case
+from mdcalc.output.jsondoc import to_json
+from mdcalc.runs.runner import run_case
 
 TIGHT = 1e-10  # relative tolerance against hand values (brief: "to 1e-10")
 ODE = 1e-8  # relative tolerance against the own integration into steady state

@@ -44,11 +44,12 @@ from scipy.optimize import minimize_scalar
 from tomli_w import dumps as toml_dumps
 from typer.testing import CliRunner
 
-from mdcalc.cli import app
+from mdcalc.cli.app import app
+from mdcalc.output.jsondoc import to_json
+from mdcalc.output.text import render_rich
 from mdcalc.problems.resonance.case import ChainSection
 from mdcalc.problems.resonance.chain import modal
-from mdcalc.report import render_rich, to_json
-from mdcalc.runner import run_case
+from mdcalc.runs.runner import run_case
 from tests.conftest import CASES, assert_no_traceback, strict_json, walk_finite
 
 TWO_PI = 2.0 * math.pi

@@ -16,9 +16,8 @@ import pytest
 from rich.cells import get_character_cell_size
 from rich.console import Console
 
-from mdcalc.casefile import read_case
-from mdcalc.report import (
-    _OTHER,
+from mdcalc.input.casefile import read_case
+from mdcalc.output.report import (
     Column,
     MethodQuantity,
     MethodRow,
@@ -28,10 +27,9 @@ from mdcalc.report import (
     Quantity,
     Report,
     Table,
-    render_plain,
-    render_rich,
 )
-from mdcalc.runner import solve_text
+from mdcalc.output.text import _OTHER, render_plain, render_rich
+from mdcalc.runs.runner import solve_text
 from tests.conftest import CASES, run_script
 from tests.test_document import assert_no_empty_column
 
@@ -180,7 +178,7 @@ def test_piped_command_prints_riches_text_without_importing_rich():
     probe = (
         "import sys\n"
         f"sys.argv = ['mdcalc', 'braking', {str(lecture)!r}]\n"
-        "from mdcalc.launch import main\n"
+        "from mdcalc.cli.launch import main\n"
         "try:\n    main()\nexcept SystemExit:\n    pass\n"
         "print(sorted(m for m in sys.modules if m == 'rich'"
         " or m.startswith(('rich.', 'importlib.metadata'))), file=sys.stderr)\n"
@@ -203,7 +201,7 @@ def test_forced_colour_still_goes_through_rich():
 def _summary(monkeypatch, rich: bool, failed: list[tuple[str, str]], how: str) -> str:
     from collections import Counter
 
-    from mdcalc import terminal
+    from mdcalc.cli import terminal
 
     out = io.StringIO()
     monkeypatch.setattr(sys, "stdout", out)
@@ -228,7 +226,7 @@ def _summary(monkeypatch, rich: bool, failed: list[tuple[str, str]], how: str) -
     ],
 )
 def test_the_run_summary_on_a_pipe_is_riches_text(monkeypatch, failed, how, plain):
-    from mdcalc.report import plain_summary
+    from mdcalc.output.text import plain_summary
 
     assert _summary(monkeypatch, False, failed, how) == _summary(monkeypatch, True, failed, how)
     files = 7 + len(failed)

@@ -46,14 +46,14 @@ def test_every_problem_with_curves_draws_them():
 
 
 def _solve(path: Path):
-    from mdcalc.casefile import read_case
-    from mdcalc.runner import solve_text
+    from mdcalc.input.casefile import read_case
+    from mdcalc.runs.runner import solve_text
 
     return solve_text(read_case(path))
 
 
 def _check_chart_data(charts) -> None:
-    from mdcalc.plot import Chart
+    from mdcalc.output.plot import Chart
 
     for chart in charts:
         assert isinstance(chart, Chart)
@@ -68,7 +68,7 @@ def _check_chart_data(charts) -> None:
 @pytest.mark.parametrize(("name", "path"), CASE_FILES, ids=[f"{n}:{p.name}" for n, p in CASE_FILES])
 def test_each_case_draws_a_valid_png(name, path, tmp_path):
     # Solved once and drawn by the renderer --plot uses; the CLI path is tested below.
-    from mdcalc.plot import render
+    from mdcalc.output.plot import render
 
     run = _solve(path)
     charts = run.module.charts(run.result)
@@ -156,7 +156,7 @@ def test_missing_matplotlib_is_a_clear_message(tmp_path, cli, monkeypatch):
 
 
 def test_render_uses_agg_and_writes_atomically(tmp_path):
-    from mdcalc.plot import Chart, Mark, Series, Shade, render
+    from mdcalc.output.plot import Chart, Mark, Series, Shade, render
 
     chart = Chart(
         "t", "x", "y",

@@ -8,7 +8,7 @@ import os
 
 import pytest
 
-from mdcalc.pool import pool_map
+from mdcalc.runs.pool import pool_map
 
 DEADLY = 13
 
@@ -42,7 +42,7 @@ def test_folders_are_searched_in_the_order_of_sorted_paths(tmp_path):
     order, as sorted(Path.rglob("*.toml")) with is_file() (what it did before)."""
     from pathlib import Path
 
-    from mdcalc.pool import collect
+    from mdcalc.runs.pool import collect
 
     names = ["a/x.toml", "a-b/x.toml", "a.b/y.toml", "A/z.toml", "a/b/c.toml", ".h.toml",
              "z.toml", "a/.toml", "dir.toml/q.toml", "b/c.TOML", "a b/x.toml", "é/x.toml",
@@ -66,7 +66,7 @@ def test_folders_are_searched_in_the_order_of_sorted_paths(tmp_path):
 
 def test_never_more_processes_than_items():
     """A fork pool starts every worker at once: --jobs 10**9 over 3 files is 3."""
-    from mdcalc.pool import default_jobs, jobs_for
+    from mdcalc.runs.pool import default_jobs, jobs_for
 
     assert jobs_for(10**9, 3) == 3
     assert jobs_for(2, 1000) == 2

@@ -11,7 +11,7 @@ import time
 
 import pytest
 
-from mdcalc.quantities import QuantityError, convert, registry
+from mdcalc.input.quantities import QuantityError, convert, registry
 from tests.conftest import CASES, assert_no_traceback, strict_json
 
 G0 = 9.80665
@@ -142,9 +142,9 @@ def test_every_numeric_field_unit_is_understood():
     # must be one pint reads (else strings are refused there: listed, on purpose).
     from pydantic import BaseModel
 
-    from mdcalc.casefile import _unit, takes_numbers
+    from mdcalc.input.casefile import _unit, takes_numbers
+    from mdcalc.input.quantities import field_unit
     from mdcalc.problems import PROBLEMS
-    from mdcalc.quantities import field_unit
 
     not_fixed = {"N·m/rad^n", "kgf·m/rad^n", "unit of value"}
     ureg = registry()
@@ -263,7 +263,7 @@ def test_sweep_over_a_key_written_with_a_unit(cli, tmp_path):
 
 
 def test_integer_list_items_take_quantity_strings(cli, write_case):
-    from mdcalc.casefile import CaseText, validate
+    from mdcalc.input.casefile import CaseText, validate
     from mdcalc.problems import PROBLEMS
 
     module = PROBLEMS["resonance"].load()

@@ -34,9 +34,9 @@ def study_file(tmp_path: Path, text: str, name: str = "study.toml") -> Path:
 
 
 def run_study(path: Path, jobs: int = 1):
-    from mdcalc.casefile import read_case
-    from mdcalc.cluster import PoolMapper
-    from mdcalc.study import run
+    from mdcalc.input.casefile import read_case
+    from mdcalc.runs.cluster import PoolMapper
+    from mdcalc.runs.study import run
 
     return run(read_case(path), PoolMapper(jobs), time_limit=10.0)
 
@@ -195,7 +195,7 @@ def test_the_same_seed_gives_bit_identical_results_however_the_samples_are_split
 ):
     import importlib
 
-    evaluate = importlib.import_module("mdcalc.study.evaluate")
+    evaluate = importlib.import_module("mdcalc.runs.study.evaluate")
     path = study_file(tmp_path, BRAKING.format(samples=3000, sampler="random"))
     first = run_study(path)
     monkeypatch.setattr(evaluate, "KERNEL_CHUNK", 7)
@@ -216,7 +216,7 @@ def test_point_by_point_samples_are_the_same_in_process_and_on_the_pool(tmp_path
     import copy
     import tomllib
 
-    from mdcalc.casefile import CaseText, validate
+    from mdcalc.input.casefile import CaseText, validate
     from mdcalc.problems import PROBLEMS
 
     module = PROBLEMS["mine-hoist"].load()

@@ -266,7 +266,7 @@ def test_varying_a_brake_force_the_base_case_does_not_have(cli, base, tmp_path):
 
 
 def _numeric_keys(path: Path) -> list[str]:
-    from mdcalc.runner import run_case
+    from mdcalc.runs.runner import run_case
 
     return [
         key
@@ -277,7 +277,7 @@ def _numeric_keys(path: Path) -> list[str]:
 
 def _both_paths(path: Path, varies: list[str], monkeypatch) -> tuple[Any, Any, list[str]]:
     from mdcalc.problems import PROBLEMS
-    from mdcalc.sweep import evaluate, parse_vary, plan
+    from mdcalc.runs.sweep import evaluate, parse_vary, plan
 
     keys = _numeric_keys(path)
     sweep = plan(path, [parse_vary(v) for v in varies])
@@ -644,8 +644,8 @@ def test_csv_numbers_read_back_as_the_very_floats(failed, block, monkeypatch):
     text whatever the block of rows formatted at a time."""
     import numpy as np
 
-    from mdcalc import sweep
-    from mdcalc.sweep import Table, to_csv
+    from mdcalc.runs import sweep
+    from mdcalc.runs.sweep import Table, to_csv
 
     monkeypatch.setattr(sweep, "CSV_BLOCK_ROWS", block)
 

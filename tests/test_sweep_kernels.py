@@ -34,7 +34,7 @@ def _held(data: dict, key: str):
 
 def _grid(data: dict, keys: dict[str, str], model) -> list[str]:
     """Three values of every kernel key the case holds, within the field's bounds."""
-    from mdcalc.casefile import is_integer_field
+    from mdcalc.input.casefile import is_integer_field
 
     varies = []
     for key in keys:
@@ -63,7 +63,7 @@ def test_kernel_equals_point_by_point(name: str, path: Path, monkeypatch):
     import tomllib
 
     from mdcalc.errors import InputError
-    from mdcalc.sweep import evaluate, parse_vary, plan
+    from mdcalc.runs.sweep import evaluate, parse_vary, plan
 
     module = PROBLEMS[name].load()
     data = tomllib.loads(path.read_text(encoding="utf-8"))
@@ -74,8 +74,8 @@ def test_kernel_equals_point_by_point(name: str, path: Path, monkeypatch):
         sweep = plan(path, [parse_vary(v) for v in varies])
     except InputError as exc:  # a grid corner outside a cross-field rule
         pytest.skip(f"grid not valid here: {exc}")
-    from mdcalc.casefile import validate
-    from mdcalc.sweep import choose_results
+    from mdcalc.input.casefile import validate
+    from mdcalc.runs.sweep import choose_results
 
     # Ask the kernel first: a scene it hands back (an ODE, a no-answer point) would
     # otherwise run point by point twice before the skip (minutes for rope scenes).
@@ -135,8 +135,8 @@ def test_the_braking_kernel_is_bit_identical_whether_branches_are_skipped_or_ble
 ):
     # The lecture scene (no drag, no stop in the reaction) takes one branch of each
     # condition over a whole grid; blending both as before gives the same bits.
-    from mdcalc.casefile import read_case, validate
     from mdcalc.core import xp
+    from mdcalc.input.casefile import read_case, validate
 
     module = PROBLEMS["braking"].load()
     case = validate(module.Case, read_case(CASES / "braking" / "lecture.toml"))

@@ -3,22 +3,23 @@
 A problem supplies, for its subcommand to exist:
 
 1. ``Case`` -- a pydantic model of the case file, derived from
-   :class:`mdcalc.model.CaseBase`, with ``problem: Literal["<name>"]``; sections are
-   :class:`mdcalc.model.CaseModel` (strict, no unknown keys); SI units, the unit in
-   brackets at the end of every field description; optional sections for optional
-   parts of the scene.
+   :class:`mdcalc.input.model.CaseBase`, with ``problem: Literal["<name>"]``;
+   sections are :class:`mdcalc.input.model.CaseModel` (strict, no unknown keys); SI
+   units, the unit in brackets at the end of every field description; optional
+   sections for optional parts of the scene.
 2. ``solve(case) -> Result`` -- pure: no printing, no I/O. A valid scene without an
    answer comes back as a result whose ``status`` is ``"no-answer"`` with a
    ``message`` saying why (the CLI exits 3), never as an exception.
-3. ``report(result) -> Report`` -- the sections the scene needs (quantities with
-   stable keys, tables, a Methods table built by :func:`mdcalc.methods.compare`).
+3. ``report(result) -> Report`` -- a :class:`mdcalc.output.report.Report` of the
+   sections the scene needs (quantities with stable keys, tables, a Methods table
+   built by :func:`mdcalc.methods.compare`).
 4. ``template() -> dict`` -- a starter case that runs as it is (``mdcalc new``).
 5. Optionally ``charts(result) -> list[Chart]`` (``--plot``; data only, no
    matplotlib) and ``sweep(case, grid) -> dict | None``, the vectorized kernel of
    ``mdcalc sweep``. A kernel runs the same formulas as ``solve``: closed forms are
    written once for floats and numpy arrays (:mod:`mdcalc.core.xp`), and
-   :func:`mdcalc.model.with_values` puts the grid's arrays into the case so that the
-   problem's own scene code runs on them. Never restate a formula in numpy.
+   :func:`mdcalc.input.model.with_values` puts the grid's arrays into the case so
+   that the problem's own scene code runs on them. Never restate a formula in numpy.
 6. Reference, stiff and extreme cases in ``cases/<name>/`` with ``[expect]`` tables,
    and tests whose expected values are computed independently of the module.
 
@@ -29,6 +30,14 @@ nothing else, in ``__all__``), ``case.py`` the pydantic sections, ``solve.py`` (
 one file per sub-scene) the scene and solver, ``report.py``, ``charts.py`` and
 ``kernel.py``. Imports inside a package run one way, case <- solve <- report <-
 charts, with no circle (tests/test_architecture.py checks the whole import graph).
+
+What a problem may import: :mod:`mdcalc.methods`, :mod:`mdcalc.input` (the case
+models), :mod:`mdcalc.output` (the Report value, chart data), :mod:`mdcalc.core`
+(shared maths) and :mod:`mdcalc.problems.common` (data and case sections several
+problems share: road adhesion, allowable accelerations, drag); never another
+problem, never :mod:`mdcalc.runs` or :mod:`mdcalc.cli` (the layers of
+tests/test_architecture.py). Maths a second problem needs goes to ``core``; data or
+a case section it needs, to ``common``.
 
 Then add one :class:`ProblemSpec` to ``PROBLEMS`` below: the CLI command, ``check``
 and ``new`` pick it up. The module is imported only when its command runs, so
@@ -42,7 +51,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Protocol, cast
 
 if TYPE_CHECKING:  # the CLI imports this registry; --help must not pay for report
-    from mdcalc.report import Report
+    from mdcalc.output.report import Report
 
 
 class ProblemModule(Protocol):

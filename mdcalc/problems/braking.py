@@ -23,9 +23,9 @@ from mdcalc.core.motion import Phase, constant_force_phase, ramp_phase
 from mdcalc.core.ode import IMPORTS as ODE_IMPORTS
 from mdcalc.core.units import STANDARD_GRAVITY
 from mdcalc.core.xp import of
+from mdcalc.input.model import CaseBase, CaseModel, exactly_one, with_values
 from mdcalc.methods import Method, compare
-from mdcalc.model import CaseBase, CaseModel, exactly_one, with_values
-from mdcalc.report import (
+from mdcalc.output.report import (
     Column,
     MethodQuantity,
     MethodsTable,
@@ -35,8 +35,8 @@ from mdcalc.report import (
     Report,
     Table,
 )
-from mdcalc.tables import ROAD_SURFACES
-from mdcalc.vehicle import Drag, SurfaceName, adhesion_of, speed_of
+from mdcalc.problems.common.tables import ROAD_SURFACES
+from mdcalc.problems.common.vehicle import Drag, SurfaceName, adhesion_of, speed_of
 
 # ------------------------------------------------------------------------ the case
 

@@ -28,9 +28,9 @@ from typing import TYPE_CHECKING, Any, Literal
 from pydantic import Field, model_validator
 
 from mdcalc.core.xp import of
+from mdcalc.input.model import CaseBase, CaseModel, FieldError
 from mdcalc.methods import Method, NotApplicable, compare
-from mdcalc.model import CaseBase, CaseModel, FieldError
-from mdcalc.report import (
+from mdcalc.output.report import (
     Column,
     MethodQuantity,
     MethodsTable,
@@ -43,7 +43,7 @@ from mdcalc.report import (
 )
 
 if TYPE_CHECKING:
-    from mdcalc.plot import Chart, Style
+    from mdcalc.output.plot import Chart, Style
 
 UNBOUNDED = "unbounded"
 
@@ -449,7 +449,7 @@ def charts(result: Result) -> list[Chart]:
     with its bound C_max where it lies on a curve, and its gain C unless that would
     flatten the curves. η₂ = 1 has no finite bound: those points are left out.
     Closed forms only, no numpy."""
-    from mdcalc.plot import Chart, Mark, Series
+    from mdcalc.output.plot import Chart, Mark, Series
 
     case, fr = result.case, result.friction
     curves = case.curves or Curves()

@@ -23,7 +23,8 @@ Its files:
 
 - ``engine.py``: The engine curve: torque against speed from a catalogue table or the external
   characteristic.
-- ``case.py``: The case file of ``mdcalc acceleration``: pydantic sections in SI units, and the
+- ``case.py``: The case file of ``mdcalc acceleration``: pydantic sections in SI units, the
+  engine speeds a case implies (launch, shift, rev limit, with their defaults), and the
   starter case.
 - ``scene.py``: The scene: the car, its gears and resistances; traction, adhesion limit and
   acceleration in a gear.

@@ -1,4 +1,5 @@
-"""The case file of ``mdcalc acceleration``: pydantic sections in SI units, and the
+"""The case file of ``mdcalc acceleration``: pydantic sections in SI units, the engine
+speeds a case implies (launch, shift, rev limit, with their defaults), and the
 starter case."""
 
 from __future__ import annotations
@@ -8,14 +9,10 @@ from typing import Any, Literal
 
 from pydantic import Field, model_validator
 
-from mdcalc.core.units import STANDARD_GRAVITY
-from mdcalc.model import CaseBase, CaseModel, FieldError, exactly_one
-from mdcalc.problems.acceleration.engine import (
-    default_launch_at_an_end,
-    engine_curve,
-    engine_speeds,
-)
-from mdcalc.vehicle import Drag, SurfaceName, adhesion_of, speed_of
+from mdcalc.core.units import STANDARD_GRAVITY, rpm_to_rad_s
+from mdcalc.input.model import CaseBase, CaseModel, FieldError, exactly_one
+from mdcalc.problems.acceleration.engine import EngineCurve
+from mdcalc.problems.common.vehicle import Drag, SurfaceName, adhesion_of, speed_of
 
 RAD_S_TO_RPM = 30.0 / math.pi
 
@@ -282,6 +279,54 @@ class Case(CaseBase):
                 ("engine",), "the torque curve is not positive between launch and rev limit"
             )
         return self
+
+
+# The engine speeds of a case, with their defaults (the case validates itself with
+# them; the scene runs with them).
+
+
+def engine_curve(engine: Engine) -> EngineCurve:
+    if engine.torque_curve is not None:
+        return EngineCurve(
+            tuple(rpm_to_rad_s(n) for n in engine.torque_curve.speed_rpm),
+            tuple(engine.torque_curve.torque),
+        )
+    assert engine.max_power is not None and engine.max_power_speed_rpm is not None
+    omega_e = rpm_to_rad_s(engine.max_power_speed_rpm)
+    a, b, c = engine.leiderman
+    return EngineCurve((), (), engine.max_power / omega_e, omega_e, (a, b, c))
+
+
+def engine_speeds(case: Case, curve: EngineCurve) -> tuple[float, float, float]:
+    """(launch, shift, rev-limit) engine speeds [rad/s] with their defaults."""
+    engine, gearbox = case.engine, case.transmission
+    if engine.max_speed_rpm is not None:
+        limit = rpm_to_rad_s(engine.max_speed_rpm)
+    elif curve.is_table:
+        limit = curve.high
+    else:
+        limit = curve.rated_speed
+    if gearbox.shift_speed_rpm is not None:
+        shift = rpm_to_rad_s(gearbox.shift_speed_rpm)
+    else:  # n_E, the speed of maximum power
+        shift = curve.max_power_speed(limit)
+    if gearbox.launch_speed_rpm is not None:
+        launch = rpm_to_rad_s(gearbox.launch_speed_rpm)
+    elif engine.max_torque_speed_rpm is not None:
+        launch = rpm_to_rad_s(engine.max_torque_speed_rpm)
+    else:
+        launch = curve.peak(limit)[0]
+    return launch, shift, limit
+
+
+def default_launch_at_an_end(case: Case, curve: EngineCurve, limit: float) -> bool:
+    """Whether the default launch speed (peak torque) falls at an end of the curve's
+    range: a flat, rising or falling curve gives no sensible launch speed by itself."""
+    if case.transmission.launch_speed_rpm or case.engine.max_torque_speed_rpm:
+        return False
+    omega = curve.peak(limit)[0]
+    span = limit - curve.low
+    return omega <= curve.low + 1e-9 * span or omega >= limit - 1e-9 * span
 
 
 def template() -> dict[str, Any]:

@@ -11,7 +11,7 @@ from mdcalc.problems.acceleration.runs import Run
 from mdcalc.problems.acceleration.solve import Result
 
 if TYPE_CHECKING:
-    from mdcalc.plot import Chart
+    from mdcalc.output.plot import Chart
 
 
 #: Points of the speed-time curve over the whole run, and of each gear's curve.
@@ -34,7 +34,7 @@ def charts(result: Result) -> list[Chart]:
 def _speed_chart(result: Result, run: Run) -> Chart:
     """v(t) from the reference run's dense output, piece by piece; marks at the
     upshifts and at the target speed."""
-    from mdcalc.plot import Chart, Mark, Series
+    from mdcalc.output.plot import Chart, Mark, Series
 
     scene = result.scene
     times: list[float] = []
@@ -80,7 +80,7 @@ def _traction_chart(result: Result) -> Chart:
     """Per gear, F_t = M_e·U_i·U_K·η/r over the engine speeds from the launch speed
     to the rev limit (first gear with the slipping launch from rest); the road
     resistance ψ·m·g + k·v², the adhesion limit φ·N and the planned upshifts."""
-    from mdcalc.plot import Chart, Mark, Series
+    from mdcalc.output.plot import Chart, Mark, Series
 
     scene = result.scene
     curve = scene.curve

@@ -6,12 +6,6 @@ from __future__ import annotations
 import bisect
 import math
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
-
-from mdcalc.core.units import rpm_to_rad_s
-
-if TYPE_CHECKING:  # annotations only: the case validates itself with this curve
-    from mdcalc.problems.acceleration.case import Case, Engine
 
 
 @dataclass(frozen=True)
@@ -84,47 +78,3 @@ class EngineCurve:
         if not self.is_table:
             return min(self.rated_speed, limit)
         return max(self._candidates(limit), key=lambda w: w * self.torque(w))
-
-
-def engine_curve(engine: Engine) -> EngineCurve:
-    if engine.torque_curve is not None:
-        return EngineCurve(
-            tuple(rpm_to_rad_s(n) for n in engine.torque_curve.speed_rpm),
-            tuple(engine.torque_curve.torque),
-        )
-    assert engine.max_power is not None and engine.max_power_speed_rpm is not None
-    omega_e = rpm_to_rad_s(engine.max_power_speed_rpm)
-    a, b, c = engine.leiderman
-    return EngineCurve((), (), engine.max_power / omega_e, omega_e, (a, b, c))
-
-
-def engine_speeds(case: Case, curve: EngineCurve) -> tuple[float, float, float]:
-    """(launch, shift, rev-limit) engine speeds [rad/s] with their defaults."""
-    engine, gearbox = case.engine, case.transmission
-    if engine.max_speed_rpm is not None:
-        limit = rpm_to_rad_s(engine.max_speed_rpm)
-    elif curve.is_table:
-        limit = curve.high
-    else:
-        limit = curve.rated_speed
-    if gearbox.shift_speed_rpm is not None:
-        shift = rpm_to_rad_s(gearbox.shift_speed_rpm)
-    else:  # n_E, the speed of maximum power
-        shift = curve.max_power_speed(limit)
-    if gearbox.launch_speed_rpm is not None:
-        launch = rpm_to_rad_s(gearbox.launch_speed_rpm)
-    elif engine.max_torque_speed_rpm is not None:
-        launch = rpm_to_rad_s(engine.max_torque_speed_rpm)
-    else:
-        launch = curve.peak(limit)[0]
-    return launch, shift, limit
-
-
-def default_launch_at_an_end(case: Case, curve: EngineCurve, limit: float) -> bool:
-    """Whether the default launch speed (peak torque) falls at an end of the curve's
-    range: a flat, rising or falling curve gives no sensible launch speed by itself."""
-    if case.transmission.launch_speed_rpm or case.engine.max_torque_speed_rpm:
-        return False
-    omega = curve.peak(limit)[0]
-    span = limit - curve.low
-    return omega <= curve.low + 1e-9 * span or omega >= limit - 1e-9 * span

@@ -6,19 +6,12 @@ import math
 from typing import Any
 
 from mdcalc.core.units import rpm_to_rad_s
+from mdcalc.output.report import Column, Note, Quantities, Quantity, Report, Table
 from mdcalc.problems.acceleration.case import RAD_S_TO_RPM, Case
 from mdcalc.problems.acceleration.plan import gear_limit
 from mdcalc.problems.acceleration.runs import Run
 from mdcalc.problems.acceleration.scene import Scene
 from mdcalc.problems.acceleration.solve import Result
-from mdcalc.report import (
-    Column,
-    Note,
-    Quantities,
-    Quantity,
-    Report,
-    Table,
-)
 
 
 def report(result: Result) -> Report:

@@ -6,8 +6,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from mdcalc.core.motion import constant_force_phase
-from mdcalc.problems.acceleration.case import Case
-from mdcalc.problems.acceleration.engine import EngineCurve, engine_curve, engine_speeds
+from mdcalc.problems.acceleration.case import Case, engine_curve, engine_speeds
+from mdcalc.problems.acceleration.engine import EngineCurve
 
 
 @dataclass(frozen=True)

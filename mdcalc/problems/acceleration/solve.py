@@ -9,14 +9,11 @@ from typing import Any, Literal
 from mdcalc.core.ode import IMPORTS as ODE_IMPORTS
 from mdcalc.core.units import rpm_to_rad_s
 from mdcalc.methods import Method, NotApplicable, compare
+from mdcalc.output.report import MethodQuantity, MethodsTable
 from mdcalc.problems.acceleration.case import RAD_S_TO_RPM, Case, Lecture
 from mdcalc.problems.acceleration.plan import ASYMPTOTE_MARGIN, Plan, plan
 from mdcalc.problems.acceleration.runs import Run, lecture_run, ode_run, piecewise_run
 from mdcalc.problems.acceleration.scene import Scene, scene_of
-from mdcalc.report import (
-    MethodQuantity,
-    MethodsTable,
-)
 
 
 @dataclass

@@ -9,7 +9,7 @@ from typing import Any, Literal
 from pydantic import Field, model_validator
 
 from mdcalc.core.units import rpm_to_rad_s
-from mdcalc.model import CaseBase, CaseModel, FieldError, exactly_one
+from mdcalc.input.model import CaseBase, CaseModel, FieldError, exactly_one
 
 DEG = math.pi / 180.0
 

@@ -13,7 +13,7 @@ from mdcalc.problems.coupling.solve import Result
 from mdcalc.problems.coupling.transients import Transient, duhamel_response
 
 if TYPE_CHECKING:
-    from mdcalc.plot import Chart
+    from mdcalc.output.plot import Chart
 
 
 #: Points of the response curve over λ (λ = 1, the resonance and the case's λ added).
@@ -83,7 +83,7 @@ def step_chart_horizon(s: Scene) -> float:
 def _step_chart(s: Scene) -> Chart:
     import numpy as np
 
-    from mdcalc.plot import Chart, Mark, Series
+    from mdcalc.output.plot import Chart, Mark, Series
 
     zeta, beta, tau = s.zeta, s.beta, s.period
     horizon = step_chart_horizon(s)
@@ -149,7 +149,7 @@ def _harmonic_chart(h: Harmonic, s: Scene, ok: bool) -> Chart:
 
     import numpy as np
 
-    from mdcalc.plot import Chart, Mark, Series
+    from mdcalc.output.plot import Chart, Mark, Series
 
     lam = h.omega / s.beta
     gamma = s.p / s.beta
@@ -212,7 +212,7 @@ def _harmonic_chart(h: Harmonic, s: Scene, ok: bool) -> Chart:
 def _transient_chart(s: Scene, transient: Transient, factor: float, when: float) -> Chart:
     import numpy as np
 
-    from mdcalc.plot import Chart, Mark, Series
+    from mdcalc.output.plot import Chart, Mark, Series
 
     response = duhamel_response(s, transient)
     times = np.asarray(response.times, dtype=float)

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from mdcalc.model import with_values
+from mdcalc.input.model import with_values
 from mdcalc.problems.coupling.case import Case
 from mdcalc.problems.coupling.scene import (
     harmonic_numbers,

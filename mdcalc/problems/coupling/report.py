@@ -5,17 +5,10 @@ from __future__ import annotations
 import math
 from typing import Any
 
+from mdcalc.output.report import Column, Note, Quantities, Quantity, Report, Table
 from mdcalc.problems.coupling.case import DEG, Case, Harmonic, Step
 from mdcalc.problems.coupling.scene import Scene, harmonic_numbers, resonance, step_numbers
 from mdcalc.problems.coupling.solve import Result
-from mdcalc.report import (
-    Column,
-    Note,
-    Quantities,
-    Quantity,
-    Report,
-    Table,
-)
 
 
 def report(result: Result) -> Report:

@@ -11,13 +11,10 @@ from mdcalc.core import sdof
 from mdcalc.core.ode import IMPORTS as ODE_IMPORTS
 from mdcalc.core.ode import pick_solver
 from mdcalc.methods import Method, compare
+from mdcalc.output.report import MethodQuantity, MethodsTable
 from mdcalc.problems.coupling.case import Case
 from mdcalc.problems.coupling.scene import Scene, scene_of
 from mdcalc.problems.coupling.transients import Transient, duhamel_peak, ode_peak, transients
-from mdcalc.report import (
-    MethodQuantity,
-    MethodsTable,
-)
 
 
 @dataclass

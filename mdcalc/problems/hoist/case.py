@@ -8,7 +8,7 @@ from typing import Annotated, Any, Literal
 from pydantic import Field, model_validator
 
 from mdcalc.core.units import STANDARD_GRAVITY, rpm_to_rad_s
-from mdcalc.model import CaseBase, CaseModel
+from mdcalc.input.model import CaseBase, CaseModel
 
 Efficiency = Annotated[float, Field(gt=0, le=1)]
 

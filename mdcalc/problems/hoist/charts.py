@@ -6,6 +6,7 @@ from __future__ import annotations
 import math
 from typing import TYPE_CHECKING
 
+from mdcalc.output.report import MethodsTable
 from mdcalc.problems.hoist.history import (
     MAX_ROPE_PIECES,
     RopeHistory,
@@ -16,10 +17,9 @@ from mdcalc.problems.hoist.history import (
 )
 from mdcalc.problems.hoist.rope import RopeScene
 from mdcalc.problems.hoist.solve import Result
-from mdcalc.report import MethodsTable
 
 if TYPE_CHECKING:
-    from mdcalc.plot import Chart
+    from mdcalc.output.plot import Chart
 
 
 #: Points per rope period on the charts' curves.
@@ -53,7 +53,7 @@ def charts(result: Result) -> list[Chart]:
 def _rope_chart(r: RopeScene, table: MethodsTable, hanging: bool) -> Chart:
     import numpy as np
 
-    from mdcalc.plot import Chart, Mark, Series
+    from mdcalc.output.plot import Chart, Mark, Series
 
     history = rope_history(r, hanging)
     t_peak, f_peak = rope_peak(history, r)

@@ -8,8 +8,8 @@ from dataclasses import dataclass
 
 from mdcalc.core.units import rpm_to_rad_s
 from mdcalc.methods import Method, compare
+from mdcalc.output.report import MethodQuantity, MethodsTable
 from mdcalc.problems.hoist.case import Case
-from mdcalc.report import MethodQuantity, MethodsTable
 
 
 @dataclass(frozen=True)

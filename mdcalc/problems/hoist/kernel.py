@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from mdcalc.model import with_values
+from mdcalc.input.model import with_values
 from mdcalc.problems.hoist.case import Case
 from mdcalc.problems.hoist.drive import can_start, reduced_inertia, steady, uniform_start
 

@@ -5,9 +5,9 @@ from __future__ import annotations
 import math
 from typing import Any
 
+from mdcalc.output.report import Note, Quantities, Quantity, Report
+from mdcalc.problems.common.tables import BRAKE_SAFETY_FACTOR
 from mdcalc.problems.hoist.solve import Result, _reference
-from mdcalc.report import Note, Quantities, Quantity, Report
-from mdcalc.tables import BRAKE_SAFETY_FACTOR
 
 
 def report(result: Result) -> Report:

@@ -9,7 +9,7 @@ from dataclasses import dataclass
 from mdcalc.core.ode import IMPORTS as ODE_IMPORTS
 from mdcalc.core.sdof import rectangular_pulse_peak
 from mdcalc.methods import Method, NotApplicable, compare
-from mdcalc.report import MethodQuantity, MethodsTable
+from mdcalc.output.report import MethodQuantity, MethodsTable
 
 #: The ODE methods are not run past this many rope oscillation periods.
 MAX_ODE_PERIODS = 3000

@@ -5,6 +5,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Literal
 
+from mdcalc.output.report import MethodsTable
+from mdcalc.problems.common.tables import HOIST_ACCELERATION, Range
 from mdcalc.problems.hoist.case import Case
 from mdcalc.problems.hoist.drive import (
     Inertia,
@@ -16,8 +18,6 @@ from mdcalc.problems.hoist.drive import (
     steady,
 )
 from mdcalc.problems.hoist.rope import RopeScene, rope_methods
-from mdcalc.report import MethodsTable
-from mdcalc.tables import HOIST_ACCELERATION, Range
 
 
 @dataclass

@@ -17,7 +17,7 @@ than half of ω_i is halved (the seed: "refine the step"), down to 2⁻³⁰ of 
 The reference integrates the energy E = I·ω²/2 over the angle, dE/dφ = M(φ, ω),
 ω = √(2E/I(φ)), and the time dt/dφ = 1/ω: no derivative of I is needed, and the
 mechanism stalls where E reaches zero (exit 3 with the angle and the time).
-M and I come as formulas (:mod:`mdcalc.expr`, never ``eval``) or as tables over
+M and I come as formulas (:mod:`mdcalc.input.expr`, never ``eval``) or as tables over
 one revolution, interpolated linearly and periodically; M may be tabulated over
 angle and speed.
 

@@ -9,8 +9,8 @@ from typing import Any, Literal
 from pydantic import Field, field_validator, model_validator
 
 from mdcalc.core.units import rpm_to_rad_s
-from mdcalc.expr import ExpressionError, check_name, parse
-from mdcalc.model import CaseBase, CaseModel, FieldError, exactly_one
+from mdcalc.input.expr import ExpressionError, check_name, parse
+from mdcalc.input.model import CaseBase, CaseModel, FieldError, exactly_one
 
 TWO_PI = 2.0 * math.pi
 

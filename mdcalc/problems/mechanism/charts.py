@@ -11,7 +11,7 @@ from mdcalc.problems.mechanism.scene import Scene
 from mdcalc.problems.mechanism.solve import Result
 
 if TYPE_CHECKING:
-    from mdcalc.plot import Chart
+    from mdcalc.output.plot import Chart
 
 
 #: Points of the ω(φ) curve per revolution, and at least and at most over the run.
@@ -58,7 +58,7 @@ def _chart_grid(scene: Scene, fl: Fluctuation | None) -> list[float]:
 
 
 def _speed_chart(result: Result, angles: list[float], speeds: list[float]) -> Chart:
-    from mdcalc.plot import Chart, Mark, Series
+    from mdcalc.output.plot import Chart, Mark, Series
 
     ref, scene, fl = result.reference, result.scene, result.fluctuation
     assert ref is not None
@@ -102,7 +102,7 @@ def _speed_chart(result: Result, angles: list[float], speeds: list[float]) -> Ch
 
 
 def _torque_chart(angles: list[float], torques: list[float]) -> Chart:
-    from mdcalc.plot import Chart, Mark, Series
+    from mdcalc.output.plot import Chart, Mark, Series
 
     return Chart(
         "Reduced torque along the run: driving above 0, resisting below",

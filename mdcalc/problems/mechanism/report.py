@@ -5,17 +5,11 @@ from __future__ import annotations
 import math
 from typing import Any
 
+from mdcalc.output.report import Column, Quantities, Quantity, Report, Table
 from mdcalc.problems.mechanism.case import TWO_PI
 from mdcalc.problems.mechanism.kovylin import Path
 from mdcalc.problems.mechanism.reference import Reference
 from mdcalc.problems.mechanism.solve import Result
-from mdcalc.report import (
-    Column,
-    Quantities,
-    Quantity,
-    Report,
-    Table,
-)
 
 RAD_S_TO_RPM = 30.0 / math.pi
 

@@ -7,7 +7,7 @@ import bisect
 from collections.abc import Callable
 from dataclasses import dataclass
 
-from mdcalc.expr import parse
+from mdcalc.input.expr import parse
 from mdcalc.problems.mechanism.case import TWO_PI, VARIABLES, Case, _flat, _start_speed
 
 

@@ -9,6 +9,7 @@ from typing import Literal
 
 from mdcalc.core.ode import IMPORTS as ODE_IMPORTS
 from mdcalc.methods import Method, NotApplicable, compare
+from mdcalc.output.report import MethodQuantity, MethodsTable, Note
 from mdcalc.problems.mechanism.case import TWO_PI, Case
 from mdcalc.problems.mechanism.fluctuation import (
     Fluctuation,
@@ -23,11 +24,6 @@ from mdcalc.problems.mechanism.reference import (
     stiffness_of,
 )
 from mdcalc.problems.mechanism.scene import Scene, scene_of
-from mdcalc.report import (
-    MethodQuantity,
-    MethodsTable,
-    Note,
-)
 
 REFERENCE_RTOL = 1e-11
 

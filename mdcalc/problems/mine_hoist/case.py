@@ -7,7 +7,7 @@ from typing import Any, Literal
 
 from pydantic import Field, model_validator
 
-from mdcalc.model import CaseBase, CaseModel, FieldError
+from mdcalc.input.model import CaseBase, CaseModel, FieldError
 
 
 class Hoist(CaseModel):

@@ -12,7 +12,7 @@ from mdcalc.problems.mine_hoist.modal import Dynamics
 from mdcalc.problems.mine_hoist.solve import Result, SweepRow
 
 if TYPE_CHECKING:
-    from mdcalc.plot import Chart
+    from mdcalc.output.plot import Chart
 
 
 #: Samples per period of a mode drawn in μ(t) (the line between them is straight).
@@ -43,7 +43,7 @@ def _factor_chart(dyn: Dynamics, spring: int) -> Chart:
     that fits :data:`CHART_POINTS` over the horizon. Faster modes swing through ±|b|
     within each of their periods: above :data:`CHART_ENVELOPE` they are drawn as the
     envelope (drawn curve) ± Σ|b|, below it they are left out and the label says so."""
-    from mdcalc.plot import Chart, Mark, Series
+    from mdcalc.output.plot import Chart, Mark, Series
 
     name = ("μ₁₂", "μ₂₃")[spring]
     frequencies = list(dyn.modes.frequencies)
@@ -112,7 +112,7 @@ def _factor_chart(dyn: Dynamics, spring: int) -> Chart:
 
 def _sweep_chart(rows: list[SweepRow]) -> Chart:
     """The seed's Table 1: the suprema and the simplified (19)-(20) against H."""
-    from mdcalc.plot import Chart, Series
+    from mdcalc.output.plot import Chart, Series
 
     heights = [row.height for row in rows]
     style: Any = "points" if len(rows) < 2 else "line"

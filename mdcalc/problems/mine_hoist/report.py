@@ -7,19 +7,12 @@ from typing import Any
 
 import numpy as np
 
+from mdcalc.output.report import Column, Note, Quantities, Quantity, Report, Table
 from mdcalc.problems.mine_hoist.case import Rope
 from mdcalc.problems.mine_hoist.modal import Dynamics, frequency_ratio
 from mdcalc.problems.mine_hoist.ode_rows import STIFF_RATIO
 from mdcalc.problems.mine_hoist.scene import RopeReduction, Scene, seed_formula_1
 from mdcalc.problems.mine_hoist.solve import Result, SweepRow
-from mdcalc.report import (
-    Column,
-    Note,
-    Quantities,
-    Quantity,
-    Report,
-    Table,
-)
 
 
 def report(result: Result) -> Report:

@@ -8,6 +8,7 @@ from typing import Literal
 
 from mdcalc.core.ode import IMPORTS as ODE_IMPORTS
 from mdcalc.methods import Method, compare
+from mdcalc.output.report import MethodQuantity, MethodsTable
 from mdcalc.problems.mine_hoist.case import Case
 from mdcalc.problems.mine_hoist.modal import (
     Dynamics,
@@ -18,10 +19,6 @@ from mdcalc.problems.mine_hoist.modal import (
 )
 from mdcalc.problems.mine_hoist.ode_rows import STIFF_RATIO, ode_first_swing
 from mdcalc.problems.mine_hoist.scene import NoNode, Scene, scene_at
-from mdcalc.report import (
-    MethodQuantity,
-    MethodsTable,
-)
 
 
 @dataclass

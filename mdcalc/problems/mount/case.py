@@ -8,7 +8,7 @@ from typing import Any, Literal
 from pydantic import Field, model_validator
 
 from mdcalc.core.units import STANDARD_GRAVITY
-from mdcalc.model import CaseBase, CaseModel, exactly_one
+from mdcalc.input.model import CaseBase, CaseModel, exactly_one
 
 
 class Engine(CaseModel):

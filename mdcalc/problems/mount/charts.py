@@ -12,7 +12,7 @@ from mdcalc.problems.mount.scene import RAD_S_TO_RPM, peak_of_two_harmonics_arra
 from mdcalc.problems.mount.solve import Result
 
 if TYPE_CHECKING:
-    from mdcalc.plot import Chart, Series, Style
+    from mdcalc.output.plot import Chart, Series, Style
 
 
 #: Points of each curve of ``--plot`` (and the case's ratio, 1/2 and 1 added).
@@ -37,7 +37,7 @@ def charts(result: Result) -> list[Chart]:
     times the case's ratio), logarithmic when the case lies below 0.1 or above 8."""
     import numpy as np
 
-    from mdcalc.plot import Chart, Mark, Series
+    from mdcalc.output.plot import Chart, Mark, Series
 
     case, s = result.case, result.scene
     ratio = s.omega / s.beta

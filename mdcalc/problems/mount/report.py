@@ -6,6 +6,7 @@ import cmath
 import math
 from typing import Any
 
+from mdcalc.output.report import Note, Quantities, Quantity, Report
 from mdcalc.problems.mount.scene import (
     QUASI_STATIC_FACTOR,
     RAD_S_TO_RPM,
@@ -16,7 +17,6 @@ from mdcalc.problems.mount.scene import (
     transmission_numbers,
 )
 from mdcalc.problems.mount.solve import Result
-from mdcalc.report import Note, Quantities, Quantity, Report
 
 
 def report(result: Result) -> Report:

@@ -6,9 +6,9 @@ from dataclasses import dataclass
 from typing import Literal
 
 from mdcalc.methods import Method, compare
+from mdcalc.output.report import MethodQuantity, MethodsTable
 from mdcalc.problems.mount.case import Case
 from mdcalc.problems.mount.scene import Scene, peak_of_two_harmonics, scene_of
-from mdcalc.report import MethodQuantity, MethodsTable
 
 
 @dataclass

@@ -7,7 +7,7 @@ from typing import Any, Literal
 
 from pydantic import Field, model_validator
 
-from mdcalc.model import CaseBase, CaseModel, FieldError
+from mdcalc.input.model import CaseBase, CaseModel, FieldError
 
 #: The modal core polishes each mode against the whole chain (O(n³) in all):
 #: 60 masses take about 2 s. Engine-transmission models have a few tens.

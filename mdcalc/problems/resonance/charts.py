@@ -13,7 +13,7 @@ from mdcalc.problems.resonance.report import HZ_TO_RPM, MAX_MODES_SHOWN, TWO_PI,
 from mdcalc.problems.resonance.solve import Result
 
 if TYPE_CHECKING:
-    from mdcalc.plot import Chart, Series
+    from mdcalc.output.plot import Chart, Series
 
 
 #: The Ince–Strutt map of ``--plot``: a coarse grid of RK4 monodromies, vectorized
@@ -44,7 +44,7 @@ def charts(result: Result) -> list[Chart]:
 def _campbell_chart(case: Case, md: Modal | None) -> Chart | None:
     """Over the [campbell] range and orders; without it, from 0 to 1.25 times the
     critical speed of [resonance] and the measured speeds, with their orders."""
-    from mdcalc.plot import Chart, Mark, Series
+    from mdcalc.output.plot import Chart, Mark, Series
 
     c, cb, r, measured = case.chain, case.campbell, case.resonance, case.measured or []
     orders = {m.order for m in measured}
@@ -138,7 +138,7 @@ def _ince_strutt_chart(m: Mathieu) -> Chart:
     over the chart's range widened to the case's points, which are marked."""
     import numpy as np
 
-    from mdcalc.plot import Chart, Series, Shade
+    from mdcalc.output.plot import Chart, Series, Shade
 
     c = m.damping
     a_low, a_high = _widened(m.a_from, m.a_to, [p[0] for p in m.points])

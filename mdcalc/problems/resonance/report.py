@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 from typing import Any
 
+from mdcalc.output.report import Column, Quantities, Quantity, Report, Table, Value
 from mdcalc.problems.resonance.case import Campbell, ChainSection, Mathieu, Measured, Resonance
 from mdcalc.problems.resonance.chain import (
     Modal,
@@ -20,14 +21,6 @@ from mdcalc.problems.resonance.mathieu import (
     verdict,
 )
 from mdcalc.problems.resonance.solve import Result
-from mdcalc.report import (
-    Column,
-    Quantities,
-    Quantity,
-    Report,
-    Table,
-    Value,
-)
 
 TWO_PI = 2.0 * math.pi
 

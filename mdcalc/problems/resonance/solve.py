@@ -9,6 +9,7 @@ from typing import Literal
 
 from mdcalc.core.ode import IMPORTS as ODE_IMPORTS
 from mdcalc.methods import Method, compare
+from mdcalc.output.report import MethodQuantity, MethodsTable, Note
 from mdcalc.problems.resonance.case import Case
 from mdcalc.problems.resonance.chain import (
     Amplitudes,
@@ -23,11 +24,6 @@ from mdcalc.problems.resonance.mathieu import (
     monodromy_ode,
     monodromy_rk4,
     spectral_radius,
-)
-from mdcalc.report import (
-    MethodQuantity,
-    MethodsTable,
-    Note,
 )
 
 

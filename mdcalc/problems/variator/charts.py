@@ -19,7 +19,7 @@ from mdcalc.problems.variator.solve import Result
 from mdcalc.problems.variator.transfer import transfer_of
 
 if TYPE_CHECKING:
-    from mdcalc.plot import Chart, Style
+    from mdcalc.output.plot import Chart, Style
 
 
 #: Points of a curve over its whole range, before refinement at a notch.
@@ -75,7 +75,7 @@ def _refined(grid: np.ndarray, notches: list[float]) -> list[float]:
 
 
 def _absorber_chart(s: AbsorberScene) -> Chart:
-    from mdcalc.plot import Chart, Mark, Series
+    from mdcalc.output.plot import Chart, Mark, Series
 
     _, high = s.resonances()
     span = max(2.0, 1.25 * high / s.omega)  # the range of the A₁(ω) table
@@ -128,7 +128,7 @@ def _absorber_chart(s: AbsorberScene) -> Chart:
 
 
 def _clutch_chart(c: Clutch) -> Chart:
-    from mdcalc.plot import Chart, Mark, Series
+    from mdcalc.output.plot import Chart, Mark, Series
 
     x1, x2, lines = clutch_lines(c)
     n = c.loading_exponent
@@ -163,7 +163,7 @@ def _clutch_chart(c: Clutch) -> Chart:
 
 
 def _mechanism_chart(m: Mechanism) -> Chart:
-    from mdcalc.plot import Chart, Mark, Series
+    from mdcalc.output.plot import Chart, Mark, Series
 
     t = transfer_of(m)
     x = np.linspace(-0.5 * t.stroke, 0.5 * t.stroke, 121).tolist()
@@ -201,7 +201,7 @@ def _stroke_times(state: periodic.Periodic, period: float) -> tuple[np.ndarray, 
 
 
 def _stroke_chart(result: Result) -> Chart:
-    from mdcalc.plot import Chart, Mark, Series
+    from mdcalc.output.plot import Chart, Mark, Series
 
     d, before = result.drive, result.two_mass
     assert d is not None and before is not None
@@ -240,7 +240,7 @@ def _stroke_chart(result: Result) -> Chart:
 def _antiresonance_chart(before: DriveScene, three: ThreeMass) -> Chart:
     """|q₁| under u = U·e^(iνt), in units of its static value (J₂ + J₃')·U/c₁ (the
     same in both models): J·q″ + b·q′ + c·q = J·u before, the system of (7f) after."""
-    from mdcalc.plot import Chart, Mark, Series
+    from mdcalc.output.plot import Chart, Mark, Series
 
     fundamental = three.drive.fundamental  # Ω = zω
     j, c, b = before.inertia, before.stiffness, before.damping
@@ -286,7 +286,7 @@ def _antiresonance_chart(before: DriveScene, three: ThreeMass) -> Chart:
 
 
 def _pendulum_chart(p: Pendulum) -> Chart:
-    from mdcalc.plot import Chart, Mark, Series
+    from mdcalc.output.plot import Chart, Mark, Series
 
     n = p.order
     top = (

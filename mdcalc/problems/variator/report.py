@@ -9,6 +9,7 @@ import numpy as np
 
 from mdcalc.core import periodic
 from mdcalc.core.units import rpm_to_rad_s
+from mdcalc.output.report import Column, Note, Quantities, Quantity, Report, Table
 from mdcalc.problems.variator.absorber import AbsorberScene, absorber_minimum
 from mdcalc.problems.variator.case import KGF_M, Clutch, Drive, Mechanism, Motor, Pendulum
 from mdcalc.problems.variator.clutch import clutch_lines
@@ -17,14 +18,6 @@ from mdcalc.problems.variator.motor import motor_models
 from mdcalc.problems.variator.pendulum import agm
 from mdcalc.problems.variator.solve import Result
 from mdcalc.problems.variator.transfer import transfer_of
-from mdcalc.report import (
-    Column,
-    Note,
-    Quantities,
-    Quantity,
-    Report,
-    Table,
-)
 
 
 def report(result: Result) -> Report:

@@ -11,6 +11,7 @@ import numpy as np
 from mdcalc.core import periodic
 from mdcalc.core.units import rpm_to_rad_s
 from mdcalc.methods import Method, compare
+from mdcalc.output.report import MethodQuantity, MethodsTable, Note
 from mdcalc.problems.variator.absorber import (
     AbsorberScene,
     absorber_scene,
@@ -21,11 +22,6 @@ from mdcalc.problems.variator.case import Absorber, Case, Motor
 from mdcalc.problems.variator.drive import CLUTCH, DriveScene, ThreeMass, _drive_methods
 from mdcalc.problems.variator.motor import motor_models
 from mdcalc.problems.variator.transfer import transfer_of
-from mdcalc.report import (
-    MethodQuantity,
-    MethodsTable,
-    Note,
-)
 
 
 @dataclass

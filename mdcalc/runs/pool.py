@@ -113,10 +113,10 @@ def jobs_for(jobs: int, count: int) -> int:
 
 def warm() -> None:
     """Import what every worker needs, once, before the workers are forked."""
-    import mdcalc.casefile  # noqa: F401
-    import mdcalc.model  # noqa: F401
-    import mdcalc.report  # noqa: F401
-    import mdcalc.runner  # noqa: F401
+    import mdcalc.input.casefile  # noqa: F401
+    import mdcalc.input.model  # noqa: F401
+    import mdcalc.output.report  # noqa: F401
+    import mdcalc.runs.runner  # noqa: F401
 
 
 #: A chunk of items sent to a worker aims at this much work [s]: long enough that a
@@ -226,7 +226,7 @@ def stream(
     max_chunk: int = 64,
 ) -> Iterator[R]:
     """The streaming loop of :func:`pool_map` and of a dask cluster
-    (:func:`mdcalc.cluster.dask_map`): ``submit(chunk)`` gives a future of
+    (:func:`mdcalc.runs.cluster.dask_map`): ``submit(chunk)`` gives a future of
     ``_run_chunk``'s (results, seconds), ``first_done(running)`` the futures of
     ``running`` that have finished (waiting for one). At most ``in_flight`` chunks
     run at once; chunks grow from one item to about ``chunk_seconds`` of work."""

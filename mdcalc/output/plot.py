@@ -14,7 +14,7 @@ from pathlib import Path
 from typing import Literal
 
 from mdcalc.errors import InputError, Problem
-from mdcalc.files import write_atomic
+from mdcalc.input.files import write_atomic
 
 FORMATS = (".png", ".svg", ".pdf")
 
@@ -90,7 +90,7 @@ def matplotlib_missing() -> str | None:
 
 def render(charts: Sequence[Chart], path: Path, title: str = "", replace: bool = True) -> None:
     """Draw ``charts`` one under another into ``path`` (its suffix is the format),
-    atomically (:func:`mdcalc.files.write_atomic`); ``replace`` False: only if no
+    atomically (:func:`mdcalc.input.files.write_atomic`); ``replace`` False: only if no
     file is there."""
     import matplotlib
 

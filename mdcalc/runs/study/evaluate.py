@@ -1,6 +1,6 @@
 """Run a study's samples: the problem's vectorized kernel where it has one, else
 every sample as a case of its own (validated, solved under its time limit), on the
-process pool or a dask cluster (:mod:`mdcalc.cluster`).
+process pool or a dask cluster (:mod:`mdcalc.runs.cluster`).
 
 The way is chosen once for the whole study, never per chunk: the kernel when every
 sample's scene is valid (the corners of the drawn box validate) and the kernel
@@ -18,10 +18,10 @@ from itertools import product
 from pathlib import Path
 from typing import Any
 
-from mdcalc.casefile import CaseText, validate
-from mdcalc.cluster import Mapper, PoolMapper
 from mdcalc.errors import EXIT_BUG, EXIT_INPUT, EXIT_NO_ANSWER, EXIT_OK, InputError
-from mdcalc.study.spec import Plan
+from mdcalc.input.casefile import CaseText, validate
+from mdcalc.runs.cluster import Mapper, PoolMapper
+from mdcalc.runs.study.spec import Plan
 
 #: Samples per kernel call: 64 Ki samples of a closed form take a few tens of ms.
 KERNEL_CHUNK = 65_536
@@ -94,7 +94,7 @@ class SampleRunner:
         self.time_limit = time_limit
 
     def __call__(self, row: Sequence[float]) -> tuple[int, list[float], str]:
-        from mdcalc.sweep import point_results, set_key
+        from mdcalc.runs.sweep import point_results, set_key
 
         data = copy.deepcopy(self.scene)
         for loc, value in zip(self.locs, row, strict=True):
@@ -134,7 +134,7 @@ def _kernel_fits(plan: Plan, samples: Any, wanted: Sequence[str]) -> bool:
     """Does the problem have a kernel for these keys, and is every sample's scene
     valid (each corner of the box of the drawn values validates)?"""
     from mdcalc.problems import PROBLEMS
-    from mdcalc.sweep import set_key
+    from mdcalc.runs.sweep import set_key
 
     module = PROBLEMS[plan.problem].load()
     if getattr(module, "sweep", None) is None or len(plan.inputs) > MAX_CORNER_INPUTS:

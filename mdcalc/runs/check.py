@@ -10,14 +10,14 @@ from dataclasses import dataclass, field
 from functools import partial
 from pathlib import Path
 
-from mdcalc.casefile import CaseText, read_case
 from mdcalc.core.budget import DEFAULT_SECONDS
 from mdcalc.errors import InputError
-from mdcalc.model import CaseBase, Expectation
-from mdcalc.pool import collect as collect_cases
-from mdcalc.pool import pool_map
-from mdcalc.report import Quantity, Value, format_value
-from mdcalc.runner import run_text
+from mdcalc.input.casefile import CaseText, read_case
+from mdcalc.input.model import CaseBase, Expectation
+from mdcalc.output.report import Quantity, Value, format_value
+from mdcalc.runs.pool import collect as collect_cases
+from mdcalc.runs.pool import pool_map
+from mdcalc.runs.runner import run_text
 
 
 @dataclass
@@ -116,8 +116,8 @@ def check_file(
 def study_values(case: CaseText, time_limit: float | None) -> dict[str, Quantity]:
     """A study file's summary numbers by their flat keys (``stopping_distance.p95``),
     the study run in this process (a check runs its files in the pool)."""
-    from mdcalc.cluster import PoolMapper
-    from mdcalc.study import run
+    from mdcalc.runs.cluster import PoolMapper
+    from mdcalc.runs.study import run
 
     values = run(case, PoolMapper(1), time_limit).values()
     return {key: Quantity(key, key, value) for key, value in values.items()}

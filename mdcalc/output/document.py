@@ -1,7 +1,7 @@
 """Calculation reports an engineer can file: ``--report FILE.html`` or ``FILE.md``.
 
-One document of the same :class:`~mdcalc.report.Report` the terminal shows, laid
-out from the same grids (:func:`mdcalc.report.grids`: the header, cells and
+One document of the same :class:`~mdcalc.output.report.Report` the terminal shows, laid
+out from the same grids (:func:`mdcalc.output.report.grids`: the header, cells and
 alignment rich prints, all-empty columns left out), with what a reviewer needs
 around it: the case file's name and SHA-256, mdcalc's version and the date, the
 inputs as written and as computed with, the notes and warnings set apart before the
@@ -20,10 +20,10 @@ from pathlib import Path
 from typing import Any
 from urllib.parse import quote
 
-from mdcalc import __version__
-from mdcalc.casefile import dotted, unit_of
+from mdcalc._version import __version__
 from mdcalc.errors import InputError, Problem
-from mdcalc.report import Grid, Report, format_value, grids
+from mdcalc.input.casefile import dotted, unit_of
+from mdcalc.output.report import Grid, Report, format_value, grids
 
 #: The report formats, by file suffix.
 FORMATS = (".html", ".md")
@@ -48,7 +48,7 @@ class Document:
 
 
 def document_of(run: Any, when: datetime | None = None) -> Document:
-    """The document of a finished run (:class:`mdcalc.runner.Run`)."""
+    """The document of a finished run (:class:`mdcalc.runs.runner.Run`)."""
     case = run.case
     digest = hashlib.sha256(case.text.encode("utf-8")).hexdigest()
     stamp = (when or datetime.now(UTC)).strftime("%Y-%m-%d %H:%M UTC")
@@ -393,8 +393,8 @@ def write(run: Any, path: Path, force: bool) -> list[Path]:
     """Write the report of ``run`` to ``path`` (.html or .md; for Markdown its chart
     PNGs beside it), atomically; an existing file only with ``force``. Returns the
     files written."""
-    from mdcalc.files import write_atomic
-    from mdcalc.plot import chart_images, matplotlib_missing
+    from mdcalc.input.files import write_atomic
+    from mdcalc.output.plot import chart_images, matplotlib_missing
 
     document = document_of(run)
     missing = matplotlib_missing() if document.charts else None
@@ -421,7 +421,7 @@ def write(run: Any, path: Path, force: bool) -> list[Path]:
 
 def html_of(document: Document) -> str:
     """The HTML page of ``document`` with its charts drawn (when matplotlib is there)."""
-    from mdcalc.plot import chart_images, matplotlib_missing
+    from mdcalc.output.plot import chart_images, matplotlib_missing
 
     missing = matplotlib_missing() if document.charts else None
     if missing:

@@ -10,9 +10,9 @@ from pathlib import Path
 from typing import Any
 
 from mdcalc.errors import InputError, Problem
-from mdcalc.report import format_seconds, format_value
-from mdcalc.study import StudyResult
-from mdcalc.study.summary import PERCENTILES, Sobol
+from mdcalc.output.report import format_seconds, format_value
+from mdcalc.runs.study import StudyResult
+from mdcalc.runs.study.summary import PERCENTILES, Sobol
 
 #: Version of the study JSON document (``"kind": "study"``).
 FORMAT = 1
@@ -23,7 +23,7 @@ def _finite(value: float) -> float | None:
 
 
 def to_dict(result: StudyResult) -> dict[str, Any]:
-    from mdcalc import __version__
+    from mdcalc._version import __version__
 
     plan, spec, ev = result.plan, result.plan.spec, result.evaluated
     title = plan.case.data.get("title")
@@ -236,7 +236,7 @@ def charts(result: StudyResult) -> list[Any]:
     total indices (or, without them, Spearman rank correlations: a tornado)."""
     import numpy as np
 
-    from mdcalc.plot import Chart, Mark, Series
+    from mdcalc.output.plot import Chart, Mark, Series
 
     out = []
     limits = {e.key: e for e in result.limits}
@@ -343,7 +343,7 @@ def check_out_path(case: Path, out: Path | None, force: bool) -> None:
 
 def write_samples(result: StudyResult, out: Path, force: bool) -> None:
     """Every sample to ``out``: CSV, or Parquet (pyarrow), atomically."""
-    from mdcalc.files import write_atomic
+    from mdcalc.input.files import write_atomic
 
     if out.suffix.lower() == ".csv":
         write_atomic(out, to_csv(result), replace=force, option="--out: ")

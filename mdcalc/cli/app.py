@@ -5,8 +5,8 @@ answer, 70 a bug (one line; the traceback only with ``--debug``), 130 Ctrl-C. Me
 stderr as ``file:line: error: path: message``; results to stdout. JSON is written
 with plain ``print``: a rich Console wraps long lines when piped and breaks it.
 
-The console script is :func:`mdcalc.launch.main`: a plain problem run skips this
-module; the command bodies both use are in :mod:`mdcalc.command`.
+The console script is :func:`mdcalc.cli.launch.main`: a plain problem run skips this
+module; the command bodies both use are in :mod:`mdcalc.cli.command`.
 """
 
 # No `from __future__ import annotations` here: typer would eval every string
@@ -19,8 +19,8 @@ from typing import Annotated
 
 import typer
 
-from mdcalc import __version__
-from mdcalc.command import (
+from mdcalc._version import __version__
+from mdcalc.cli.command import (
     DEFAULT_TIME_LIMIT,
     check_outputs,
     guard,
@@ -30,6 +30,7 @@ from mdcalc.command import (
     run_batch,
     run_problem,
 )
+from mdcalc.cli.startup import prepare
 from mdcalc.errors import (
     EXIT_INPUT,
     EXIT_MISMATCH,
@@ -38,7 +39,6 @@ from mdcalc.errors import (
     Problem,
 )
 from mdcalc.problems import PROBLEMS, ProblemSpec
-from mdcalc.startup import prepare
 
 app = typer.Typer(
     name="mdcalc",
@@ -192,8 +192,8 @@ def check_command(
     def body() -> int:
         from rich.table import Table
 
-        from mdcalc.check import check_paths, collect
-        from mdcalc.pool import jobs_for
+        from mdcalc.runs.check import check_paths, collect
+        from mdcalc.runs.pool import jobs_for
 
         workers = jobs_for(jobs, len(collect(paths)))
         outcome = check_paths(paths, workers, limit_of(time_limit))
@@ -287,13 +287,13 @@ def sweep_command(
     """
 
     def body() -> int:
-        from mdcalc.pool import jobs_for
-        from mdcalc.sweep import evaluate, parse_vary, plan, to_csv, to_json
-        from mdcalc.terminal import print_sweep, progress
+        from mdcalc.cli.terminal import print_sweep, progress
+        from mdcalc.runs.pool import jobs_for
+        from mdcalc.runs.sweep import evaluate, parse_vary, plan, to_csv, to_json
 
         if out is not None and out.suffix.lower() not in (".csv", ".json"):
             raise InputError(out, [Problem("--out takes a .csv or a .json file")])
-        from mdcalc.cluster import executor, scheduler_of
+        from mdcalc.runs.cluster import executor, scheduler_of
 
         sweep = plan(case, [parse_vary(v) for v in vary])
         workers = jobs_for(jobs, sweep.points)
@@ -308,7 +308,7 @@ def sweep_command(
             print_error(f"{case}: error: ... and {len(table.messages) - 20} more points")
         how = "vectorized" if table.vectorized else "point by point"
         if out is not None:
-            from mdcalc.casefile import write_text_atomic
+            from mdcalc.input.casefile import write_text_atomic
 
             text = to_csv(table) if out.suffix.lower() == ".csv" else to_json(table, sweep)
             write_text_atomic(out, text)
@@ -364,12 +364,18 @@ def study_command(
     """
 
     def body() -> int:
-        from mdcalc.casefile import read_case
-        from mdcalc.cluster import executor, scheduler_of
-        from mdcalc.pool import default_jobs
-        from mdcalc.study import run as run_study
-        from mdcalc.study.output import charts, check_out_path, render_rich, to_json, write_samples
-        from mdcalc.terminal import progress
+        from mdcalc.cli.terminal import progress
+        from mdcalc.input.casefile import read_case
+        from mdcalc.runs.cluster import executor, scheduler_of
+        from mdcalc.runs.pool import default_jobs
+        from mdcalc.runs.study import run as run_study
+        from mdcalc.runs.study.output import (
+            charts,
+            check_out_path,
+            render_rich,
+            to_json,
+            write_samples,
+        )
 
         check_outputs(case, plot, None, force)
         check_out_path(case, out, force)
@@ -402,7 +408,7 @@ def study_command(
             print_error(f"wrote {out}: {len(result.samples):,} samples")
         answered = any(s is not None for s in result.stats.values())
         if plot is not None and answered:
-            from mdcalc.plot import render
+            from mdcalc.output.plot import render
 
             render(
                 charts(result),
@@ -444,7 +450,7 @@ def new_command(
 
             sys.stdout.write(tomli_w.dumps(data))
         else:
-            from mdcalc.casefile import write_toml_atomic
+            from mdcalc.input.casefile import write_toml_atomic
 
             write_toml_atomic(output, data, force=force)
             print_error(f"wrote {output}")
@@ -470,6 +476,6 @@ def _main(
 
 def main() -> None:
     """The typer application (every command and option); the console script is
-    :func:`mdcalc.launch.main`, which takes a plain problem run past typer."""
+    :func:`mdcalc.cli.launch.main`, which takes a plain problem run past typer."""
     prepare()
     app()

@@ -6,7 +6,7 @@ this machine, listening on 127.0.0.1 only), or the environment variable
 ``MDCALC_SCHEDULER``. dask is imported only here, and only then
 (``pip install 'mdcalc[dask]'``).
 
-Both run the same streaming loop (:func:`mdcalc.pool.stream`): chunks grow to about
+Both run the same streaming loop (:func:`mdcalc.runs.pool.stream`): chunks grow to about
 a second of work on a cluster, results come back in input order, and a chunk lost
 with its worker is run again (dask's retries). Items are computed one by one and
 independently, so a result does not depend on the chunk or the machine it ran on.
@@ -53,7 +53,7 @@ class PoolMapper:
         self.description = f"process pool, {jobs} jobs" if jobs > 1 else "in this process (1 job)"
 
     def __call__(self, func: Any, items: Any, on_done: Any = None, on_error: Any = None) -> Any:
-        from mdcalc.pool import pool_map
+        from mdcalc.runs.pool import pool_map
 
         return pool_map(func, items, self.jobs, on_done, on_error)
 
@@ -135,7 +135,7 @@ def dask_map(
     ``on_error`` (else the error goes up)."""
     import distributed
 
-    from mdcalc.pool import _run_chunk, stream
+    from mdcalc.runs.pool import _run_chunk, stream
 
     threads = sum(client.nthreads().values()) or 1
 

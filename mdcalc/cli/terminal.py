@@ -34,7 +34,7 @@ def plain_stream(stream: Any) -> bool:
 def print_report(report: Any, width: int, console: Any) -> None:
     """A report on stdout: the plain-text layout where it gives rich's very text
     (a pipe, most reports), else rich."""
-    from mdcalc.report import render_plain, render_rich
+    from mdcalc.output.text import render_plain, render_rich
 
     text = render_plain(report, width) if plain_stdout() else None
     if text is None:
@@ -57,7 +57,7 @@ def print_run_summary(
         after.append(f"... and {len(failed) - shown} more")
     stream = sys.stderr if stderr else sys.stdout
     if plain_stream(stream):  # the very text rich prints, without importing rich
-        from mdcalc.report import plain_summary
+        from mdcalc.output.text import plain_summary
 
         text = plain_summary([head], ["status", "files"], rows, [False, True], after, 140)
         if text is not None:
@@ -127,8 +127,8 @@ def status_counts(status: Any) -> str:
 def print_sweep(table: Any, points: int, how: str) -> None:
     from rich.table import Table
 
-    from mdcalc.report import format_value
-    from mdcalc.sweep import summary_rows
+    from mdcalc.output.report import format_value
+    from mdcalc.runs.sweep import summary_rows
 
     console = stdout_console()
     # A table of points while it fits: at most 200 rows and 8 columns (a scene with

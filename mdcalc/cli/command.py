@@ -1,7 +1,7 @@
 """What a problem command does once its arguments are read, without typer.
 
-Shared by the typer application (:mod:`mdcalc.cli`) and the console script's direct
-path for a plain run (:mod:`mdcalc.launch`): the same body, the same exit codes and
+Shared by the typer application (:mod:`mdcalc.cli.app`) and the console script's direct
+path for a plain run (:mod:`mdcalc.cli.launch`): the same body, the same exit codes and
 messages whichever parsed the command line. Imports nothing heavy: a scene's
 modules load inside the body.
 """
@@ -13,7 +13,7 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
-from mdcalc import __version__
+from mdcalc._version import __version__
 from mdcalc.errors import (
     EXIT_BUG,
     EXIT_INPUT,
@@ -92,11 +92,11 @@ def run_problem(
     document: Path | None = None,
 ) -> int:
     def body() -> int:
-        from mdcalc.report import to_json
+        from mdcalc.output.jsondoc import to_json
 
         check_outputs(case, plot, save, force, document)
-        from mdcalc.casefile import read_case
-        from mdcalc.runner import solve_text
+        from mdcalc.input.casefile import read_case
+        from mdcalc.runs.runner import solve_text
 
         run = solve_text(read_case(case), expected_problem=spec.name, time_limit=time_limit)
         report = run.report
@@ -104,11 +104,11 @@ def run_problem(
         if as_json:
             print(to_json(report))
         else:
-            from mdcalc.terminal import print_report
+            from mdcalc.cli.terminal import print_report
 
             print_report(report, PIPE_WIDTH, make_console)
         if plot is not None and charts:
-            from mdcalc.plot import render
+            from mdcalc.output.plot import render
 
             render(charts, plot, title=report.title, replace=force)
             print_error(f"wrote {plot}")
@@ -116,7 +116,7 @@ def run_problem(
             _save(run, save, force)
             print_error(f"wrote {save}")
         if document is not None:
-            from mdcalc.document import write
+            from mdcalc.output.document import write
 
             for written in write(run, document, force):
                 print_error(f"wrote {written}")
@@ -147,11 +147,11 @@ def run_batch(
         import time
         from collections import Counter
 
-        from mdcalc.batch import FileRunner, RunOptions, lost_file, worst_exit
-        from mdcalc.cluster import executor, scheduler_of
+        from mdcalc.cli.terminal import print_run_summary
         from mdcalc.errors import STATUS_OF_EXIT
-        from mdcalc.pool import collect, jobs_for
-        from mdcalc.terminal import print_run_summary
+        from mdcalc.runs.batch import FileRunner, RunOptions, lost_file, worst_exit
+        from mdcalc.runs.cluster import executor, scheduler_of
+        from mdcalc.runs.pool import collect, jobs_for
 
         files = collect(paths, outputs=out is not None or report_dir is not None)
         if report_dir is not None and any(
@@ -190,8 +190,8 @@ def run_batch(
                     failed.append((outcome.path, outcome.status))
         seconds = time.perf_counter() - start
         if report_dir is not None:
-            from mdcalc.casefile import write_text_atomic
-            from mdcalc.document import index_html
+            from mdcalc.input.casefile import write_text_atomic
+            from mdcalc.output.document import index_html
 
             write_text_atomic(report_dir / "index.html", index_html(index))
             written = sum(1 for row in index if row[4])
@@ -205,7 +205,7 @@ def run_batch(
 
 def _write_document(case: Any, outcome: Any, folder: Path) -> tuple[str, str, str, str, str]:
     """Write a file's HTML report under ``folder``; its row of the index page."""
-    from mdcalc.casefile import write_text_atomic
+    from mdcalc.input.casefile import write_text_atomic
 
     name = case.out_name.with_suffix(".html")
     if outcome.document:
@@ -220,7 +220,7 @@ def _write_outcome(
     """Write one file's outcome where it goes; flush stdout every 0.2 s (streaming)."""
     import time
 
-    from mdcalc.casefile import write_text_atomic
+    from mdcalc.input.casefile import write_text_atomic
 
     if out is not None:
         write_text_atomic(out / case.out_name, outcome.json + "\n")
@@ -251,7 +251,7 @@ def check_outputs(
         if path is None:
             continue
         if suffixes is None:
-            from mdcalc.plot import FORMATS, matplotlib_missing
+            from mdcalc.output.plot import FORMATS, matplotlib_missing
 
             if path.suffix.lower() not in FORMATS:
                 problems.append((path, f"{option}: use a file ending {', '.join(FORMATS)}"))
@@ -284,7 +284,7 @@ def _chart_file_problems(
     file or the --plot picture, nor, without --force, a file that is there."""
     import glob
 
-    from mdcalc.document import is_chart_file
+    from mdcalc.output.document import is_chart_file
 
     problems: list[tuple[Path, str]] = []
     for other, what in ((case, "the case file"), (plot, "the --plot picture")):
@@ -310,8 +310,8 @@ def _charts(run: Any, plot: Path) -> list[Any]:
 
 def _save(run: Any, path: Path, force: bool) -> None:
     """The case as read, with the results in a [saved] table (tomli-w, atomic)."""
-    from mdcalc.casefile import write_toml_atomic
-    from mdcalc.report import saved_table
+    from mdcalc.input.casefile import write_toml_atomic
+    from mdcalc.output.jsondoc import saved_table
 
     data = {k: v for k, v in run.case.data.items() if k != "saved"}
     data["saved"] = {**saved_table(run.report), "case": str(run.case.path)}

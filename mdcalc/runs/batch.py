@@ -1,6 +1,6 @@
 """Batch runs: many case files through a process pool (``mdcalc run``, ``check --jobs``).
 
-The pool and the file list are :mod:`mdcalc.pool`'s. Each file's outcome comes back
+The pool and the file list are :mod:`mdcalc.runs.pool`'s. Each file's outcome comes back
 as text (a JSON line or a rendered report); the parent writes it in input order, so
 a run's output does not depend on the number of jobs. One bad file is reported and
 the rest run on.
@@ -16,7 +16,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from mdcalc import __version__
+from mdcalc._version import __version__
 from mdcalc.errors import (
     EXIT_BUG,
     EXIT_INPUT,
@@ -87,9 +87,10 @@ def _error_json(path: str, status: str, problems: list[dict[str, object]]) -> st
 def run_file(path: str, options: RunOptions) -> Outcome:
     """Run one case file; never raises (a bug becomes an outcome with exit 70)."""
     from mdcalc import methods
-    from mdcalc.casefile import read_case
-    from mdcalc.report import render_plain, render_rich, to_json
-    from mdcalc.runner import solve_text
+    from mdcalc.input.casefile import read_case
+    from mdcalc.output.jsondoc import to_json
+    from mdcalc.output.text import render_plain, render_rich
+    from mdcalc.runs.runner import solve_text
 
     methods.MIN_TIMING_SECONDS = options.timing_budget
     start = time.perf_counter()
@@ -112,7 +113,7 @@ def run_file(path: str, options: RunOptions) -> Outcome:
         if options.json:
             outcome.json = to_json(report, indent=None)
         if options.document:
-            from mdcalc.document import document_of, html_of
+            from mdcalc.output.document import document_of, html_of
 
             outcome.document = html_of(document_of(run))
         if options.text:
@@ -160,9 +161,9 @@ def _rendered(render: Callable[[Any], None], options: RunOptions) -> str:
 def run_study_file(case: Any, options: RunOptions) -> Outcome:
     """A study file in a batch: the study runs in this worker, its samples one after
     another (or by the kernel); its outcome is the study's JSON or report."""
-    from mdcalc.cluster import PoolMapper
-    from mdcalc.study import run
-    from mdcalc.study.output import render_rich, to_json
+    from mdcalc.runs.cluster import PoolMapper
+    from mdcalc.runs.study import run
+    from mdcalc.runs.study.output import render_rich, to_json
 
     path = str(case.path)
     result = run(case, PoolMapper(1), options.time_limit)

@@ -2,19 +2,19 @@
 
 A plain run of one scene, ``mdcalc PROBLEM CASE.toml [--json] [--debug]`` (what a
 shell loop over case files types), goes straight to the problem's command body
-(:func:`mdcalc.command.run_problem`) without importing typer: its parser and the
+(:func:`mdcalc.cli.command.run_problem`) without importing typer: its parser and the
 building of every command are most of what such a run spends above the stack's
 floor. So does a plain batch, ``mdcalc run PATH... [--jobs N] [--json] [--debug]``
-(:func:`mdcalc.command.run_batch`). Any other command line, an option more, a
+(:func:`mdcalc.cli.command.run_batch`). Any other command line, an option more, a
 misspelling, ``--help``, shell completion, goes through the typer application
-(:mod:`mdcalc.cli`) as before; the body, its output, its messages and exit codes are
+(:mod:`mdcalc.cli.app`) as before; the body, its output, its messages and exit codes are
 the same either way (tests/test_launch.py).
 """
 
 import os
 import sys
 
-from mdcalc.startup import prepare
+from mdcalc.cli.startup import prepare
 
 #: The flags a direct run takes (each a bool, False when absent).
 DIRECT_FLAGS = ("--json", "--debug")
@@ -85,7 +85,7 @@ def main() -> None:
         if plain is not None:
             from pathlib import Path
 
-            from mdcalc.command import DEFAULT_TIME_LIMIT, run_problem
+            from mdcalc.cli.command import DEFAULT_TIME_LIMIT, run_problem
             from mdcalc.problems import PROBLEMS
 
             problem, case, as_json, debug = plain
@@ -95,7 +95,7 @@ def main() -> None:
         if batch is not None:
             from pathlib import Path
 
-            from mdcalc.command import run_batch
+            from mdcalc.cli.command import run_batch
 
             paths, jobs, as_json, debug = batch
             sys.exit(run_batch([Path(p) for p in paths], jobs, as_json=as_json, debug=debug))
@@ -104,6 +104,6 @@ def main() -> None:
 
         print("mdcalc: interrupted", file=sys.stderr)
         sys.exit(EXIT_INTERRUPTED)
-    from mdcalc.cli import app
+    from mdcalc.cli.app import app
 
     app()

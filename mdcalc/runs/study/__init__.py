@@ -13,12 +13,12 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
-from mdcalc.casefile import CaseText
-from mdcalc.cluster import Mapper
 from mdcalc.errors import InputError, Problem
-from mdcalc.study.evaluate import Evaluated, evaluate
-from mdcalc.study.spec import Plan, is_study, plan
-from mdcalc.study.summary import Exceedance, Sobol, Stats, exceedance, sobol, stats
+from mdcalc.input.casefile import CaseText
+from mdcalc.runs.cluster import Mapper
+from mdcalc.runs.study.evaluate import Evaluated, evaluate
+from mdcalc.runs.study.spec import Plan, is_study, plan
+from mdcalc.runs.study.summary import Exceedance, Sobol, Stats, exceedance, sobol, stats
 
 __all__ = ["StudyResult", "is_study", "plan", "run", "Plan"]
 
@@ -76,8 +76,8 @@ def run(
     applies to each sample; ``on_done(n)`` is told of samples finished and
     ``on_total(n)`` of the samples to come (for a progress bar)."""
     from mdcalc.problems import PROBLEMS
-    from mdcalc.study.sample import draws, salib_problem, saltelli
-    from mdcalc.sweep import key_results
+    from mdcalc.runs.study.sample import draws, salib_problem, saltelli
+    from mdcalc.runs.sweep import key_results
 
     start = time.perf_counter()
     study = plan(case)

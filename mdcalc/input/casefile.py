@@ -17,8 +17,8 @@ import tomli
 from pydantic import BaseModel, ValidationError
 
 from mdcalc.errors import InputError, Problem
-from mdcalc.files import read_regular, write_atomic
-from mdcalc.model import FieldError
+from mdcalc.input.files import read_regular, write_atomic
+from mdcalc.input.model import FieldError
 
 M = TypeVar("M", bound=BaseModel)
 
@@ -111,7 +111,7 @@ def validate(model: type[M], case: CaseText) -> M:
     """Validate parsed data against ``model``; every problem is reported at once.
 
     Numbers written as quantity strings (``"52.5 N*m/deg"``) are converted to the
-    field's unit first (:mod:`mdcalc.quantities`); ``case.conversions`` lists them.
+    field's unit first (:mod:`mdcalc.input.quantities`); ``case.conversions`` lists them.
     """
     problems: list[Problem] = []
     conversions: list[Conversion] = []
@@ -171,7 +171,7 @@ def _with_quantities(
     info = _walk(model, loc)[1]
     if info is None or not takes_numbers(info.annotation):
         return value
-    from mdcalc.quantities import QuantityError, convert
+    from mdcalc.input.quantities import QuantityError, convert
 
     unit = _unit(info)
     try:
@@ -208,7 +208,7 @@ def takes_numbers(annotation: Any) -> bool:
 
 def write_toml_atomic(path: Path, data: dict[str, Any], force: bool = False) -> None:
     """Write ``data`` as TOML to ``path`` atomically; never overwrite without ``force``
-    (:func:`mdcalc.files.write_atomic`: exclusive creation, regular files only)."""
+    (:func:`mdcalc.input.files.write_atomic`: exclusive creation, regular files only)."""
     import tomli_w
 
     write_atomic(path, tomli_w.dumps(data), replace=force)

@@ -6,7 +6,7 @@ run a Sobol sensitivity analysis. ``plan`` validates both, converts quantity
 strings in the distributions to the field's unit, and refuses a distribution that
 can draw a value outside the field's validated bounds (unless it is truncated).
 
-Pure logic: no sampling here (:mod:`mdcalc.study.sample`), no solving.
+Pure logic: no sampling here (:mod:`mdcalc.runs.study.sample`), no solving.
 """
 
 from __future__ import annotations
@@ -18,9 +18,9 @@ from typing import Any, Literal
 
 from pydantic import Field, model_validator
 
-from mdcalc.casefile import CaseText, field_info, is_integer_field, unit_of, validate
 from mdcalc.errors import InputError, Problem
-from mdcalc.model import MAGNITUDE_LIMIT, CaseBase, CaseModel
+from mdcalc.input.casefile import CaseText, field_info, is_integer_field, unit_of, validate
+from mdcalc.input.model import MAGNITUDE_LIMIT, CaseBase, CaseModel
 
 #: Samples of one study (its Monte Carlo draws, or its Saltelli design): 10⁷ samples
 #: of a vectorized problem take about 10 s and a few GB; of a per-sample problem, days.
@@ -311,7 +311,7 @@ def is_study(data: dict[str, Any]) -> bool:
 def plan(case: CaseText) -> Plan:
     """Validate a study file already read: its scene, its ``[study]`` table and every
     distribution against the bounds of the key it draws."""
-    from mdcalc.runner import problem_of
+    from mdcalc.runs.runner import problem_of
 
     spec_problem = problem_of(case)
     module = spec_problem.load()
@@ -343,7 +343,7 @@ def _median_scene_is_valid(
 
     import numpy as np
 
-    from mdcalc.sweep import set_key
+    from mdcalc.runs.sweep import set_key
 
     data = copy.deepcopy(scene)
     for item in inputs:
@@ -378,10 +378,10 @@ def _input(
         problems.append(Problem(message, path, line))
 
     info = field_info(model, loc)
-    from mdcalc.sweep import get_key
+    from mdcalc.runs.sweep import get_key
 
     base = get_key(scene, loc)
-    from mdcalc.casefile import takes_numbers
+    from mdcalc.input.casefile import takes_numbers
 
     if info is None or not takes_numbers(info.annotation) or isinstance(base, bool | dict | list):
         fail(f"{key} is not a number of this problem's scene; a study draws numeric keys")
@@ -395,7 +395,7 @@ def _input(
         if value is None:
             return None
         if isinstance(value, str):
-            from mdcalc.quantities import QuantityError, convert
+            from mdcalc.input.quantities import QuantityError, convert
 
             try:
                 value = convert(value, unit if unit else "-")
@@ -492,7 +492,7 @@ def _half_width(tol: Any, nominal: float, unit: str, fail: Any) -> float | None:
         return abs(float(text))
     except ValueError:
         pass
-    from mdcalc.quantities import QuantityError, convert
+    from mdcalc.input.quantities import QuantityError, convert
 
     try:
         return abs(convert(text, unit if unit else "-"))

@@ -20,10 +20,10 @@ from itertools import product
 from pathlib import Path
 from typing import Any
 
-from mdcalc.casefile import CaseText, is_integer_field, read_case, unit_of, validate
 from mdcalc.core.budget import DEFAULT_SECONDS
 from mdcalc.errors import EXIT_BUG, EXIT_INPUT, EXIT_NO_ANSWER, EXIT_OK, InputError, Problem
-from mdcalc.runner import problem_of, solve_model
+from mdcalc.input.casefile import CaseText, is_integer_field, read_case, unit_of, validate
+from mdcalc.runs.runner import problem_of, solve_model
 
 #: A grid larger than this is refused: 10⁷ points of a vectorized problem take
 #: about 1 GB of columns; of a per-point problem, hours.
@@ -280,7 +280,7 @@ def key_results(
     scene. By default the key results: the quantities of the report's Methods tables
     (all numeric results where it has none). Asked-for ``results`` must be numeric
     results (else :class:`InputError` at ``where``)."""
-    from mdcalc.report import MethodsTable
+    from mdcalc.output.report import MethodsTable
 
     _, report = solve_model(problem, module, model, time_limit)
     numeric = _numeric(report)
@@ -313,7 +313,7 @@ def evaluate(
 ) -> Table:
     """Every grid point: vectorized where the problem offers it (in this process),
     else point by point, each point under ``time_limit`` seconds, on ``jobs``
-    processes or on ``mapper`` (:mod:`mdcalc.cluster`: a dask cluster).
+    processes or on ``mapper`` (:mod:`mdcalc.runs.cluster`: a dask cluster).
 
     ``on_done(n)`` is told of every ``n`` points finished (for a progress bar).
     """
@@ -338,7 +338,7 @@ def evaluate(
         status = np.zeros(sweep.points, dtype=int)
         return Table(keys + wanted, units, columns, status, vectorized=True)
 
-    from mdcalc.cluster import PoolMapper
+    from mdcalc.runs.cluster import PoolMapper
 
     run = mapper if mapper is not None else PoolMapper(jobs)
     path = str(sweep.case.path)
@@ -428,7 +428,7 @@ def to_json(table: Table, sweep: Plan) -> bytes:
     import numpy as np
     import orjson
 
-    from mdcalc import __version__
+    from mdcalc._version import __version__
 
     document = {
         "mdcalc": __version__,
@@ -451,7 +451,7 @@ def summary_rows(table: Table) -> list[tuple[str, str, str, str]]:
     """(key, unit, min, max) of each result column over the points that have it."""
     import numpy as np
 
-    from mdcalc.report import format_value
+    from mdcalc.output.report import format_value
 
     rows = []
     for key in table.keys:

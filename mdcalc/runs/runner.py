@@ -12,11 +12,11 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from mdcalc.casefile import CaseText, Conversion, dotted, read_case, validate
 from mdcalc.core import budget
 from mdcalc.errors import InputError, Problem
+from mdcalc.input.casefile import CaseText, Conversion, dotted, read_case, validate
+from mdcalc.output.report import Column, Note, Report, Table, first_non_finite
 from mdcalc.problems import PROBLEMS, ProblemSpec
-from mdcalc.report import Column, Note, Report, Table, first_non_finite
 
 
 def problem_of(case: CaseText) -> ProblemSpec:

@@ -10,7 +10,7 @@ import warnings
 from typing import Any
 
 from mdcalc.errors import InputError, Problem
-from mdcalc.study.spec import U_MAX, U_MIN, Plan
+from mdcalc.runs.study.spec import U_MAX, U_MIN, Plan
 
 
 def unit_draws(sampler: str, samples: int, dims: int, seed: int) -> Any:

@@ -1,0 +1,17 @@
+"""Runs: cases computed, one or many, in this process, a pool or a cluster.
+
+- ``runner.py``: one case: read -> validate -> solve -> report under the time
+  budget, shared by the commands, check, run and sweep; floating point giving up is
+  a scene without an answer (exit 3).
+- ``pool.py``: case-file collection and the process pool: results streamed in input
+  order, workers killed on Ctrl-C, a killed worker's items retried.
+- ``cluster.py``: ``--scheduler``: the pool or a dask.distributed cluster behind one
+  mapper.
+- ``batch.py``: ``mdcalc run``: one outcome per file, in input order.
+- ``check.py``: ``mdcalc check``: the ``[expect]`` tables.
+- ``sweep.py``: ``mdcalc sweep``: the grid, vectorized kernels or point-by-point
+  runs, CSV/JSON.
+- ``study/``: ``mdcalc study``: uncertain inputs, samples, statistics, sensitivity.
+
+Imports nothing eagerly.
+"""
