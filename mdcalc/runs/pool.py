@@ -115,7 +115,9 @@ def warm() -> None:
     """Import what every worker needs, once, before the workers are forked."""
     import mdcalc.input.casefile  # noqa: F401
     import mdcalc.input.model  # noqa: F401
+    import mdcalc.output.jsondoc  # noqa: F401  (with report and text: the old report.py)
     import mdcalc.output.report  # noqa: F401
+    import mdcalc.output.text  # noqa: F401
     import mdcalc.runs.runner  # noqa: F401
 
 
