@@ -25,6 +25,9 @@ from typing import Any, TypeVar
 
 from mdcalc.errors import InputError, Problem
 
+#: A worker's exit status when it ends because its parent is gone (as after SIGHUP).
+EXIT_ORPHANED = 128 + signal.SIGHUP
+
 T = TypeVar("T")
 R = TypeVar("R")
 
@@ -141,7 +144,8 @@ def pool_map(
 
     Chunks start at one item and grow to about CHUNK_SECONDS of work each. Workers
     ignore SIGINT (a terminal sends Ctrl-C to the whole process group); the parent's
-    KeyboardInterrupt kills them at once and goes up to the caller. ``on_error``
+    KeyboardInterrupt kills them at once and goes up to the caller. A worker whose
+    parent was killed outright ends by itself within a second (:func:`_worker_start`). ``on_error``
     turns each item of a chunk that raised into a result (else the error goes up)."""
     if jobs <= 1 or len(items) <= 1:
         for item in items:
@@ -179,7 +183,9 @@ def pool_map(
 def _new_pool(jobs: int) -> ProcessPoolExecutor:
     methods = multiprocessing.get_all_start_methods()
     context = multiprocessing.get_context("fork" if "fork" in methods else None)
-    return ProcessPoolExecutor(max_workers=jobs, mp_context=context, initializer=_ignore_sigint)
+    return ProcessPoolExecutor(
+        max_workers=jobs, mp_context=context, initializer=_worker_start, initargs=(os.getpid(),)
+    )
 
 
 def _pool_stream(
@@ -276,8 +282,27 @@ def _run_chunk(func: Callable[[T], R], chunk: Sequence[T]) -> tuple[list[R], flo
     return results, time.perf_counter() - start
 
 
-def _ignore_sigint() -> None:
+#: How often a worker looks whether its parent is still there [s].
+PARENT_POLL_SECONDS = 0.2
+
+
+def _worker_start(parent: int) -> None:
+    """A worker ignores Ctrl-C (the parent stops it) and ends by itself within
+    PARENT_POLL_SECONDS once ``parent`` is gone: killed outright (SIGKILL by a CI
+    timeout or the out-of-memory killer), the parent cannot stop its workers, and
+    they would go on computing their items for minutes. A thread of the worker
+    watches (``PR_SET_PDEATHSIG`` would follow the parent's forking thread, not the
+    parent, and is Linux's alone); it also sees a parent that died before this ran."""
+    import threading
+
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+    def watch() -> None:
+        while os.getppid() == parent:
+            time.sleep(PARENT_POLL_SECONDS)
+        os._exit(EXIT_ORPHANED)
+
+    threading.Thread(target=watch, name="mdcalc-parent-watch", daemon=True).start()
 
 
 def _kill(pool: ProcessPoolExecutor) -> None:
