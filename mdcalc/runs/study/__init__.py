@@ -36,6 +36,7 @@ class StudyResult:
     limits: list[Exceedance] = field(default_factory=list)
     sensitivity: list[Sobol] = field(default_factory=list)
     sensitivity_runs: int = 0
+    sensitivity_replicates: int = 0
     sensitivity_how: str = ""
     time_limit: float | None = None
 
@@ -98,7 +99,7 @@ def run(
             case.path, [Problem("the nominal scene has no numeric result to study", "study")]
         )
     samples = draws(study)
-    design = saltelli(study) if spec.sensitivity else None
+    design, replicates = saltelli(study) if spec.sensitivity else (None, 0)
     if on_total is not None:
         on_total(len(samples) + (0 if design is None else len(design)))
     evaluated = evaluate(study, samples, keys, mapper, on_done, time_limit)
@@ -112,13 +113,14 @@ def run(
     if design is not None:
         on_design = evaluate(study, design, keys, mapper, on_done, time_limit)
         result.sensitivity_runs = len(design)
+        result.sensitivity_replicates = replicates
         result.sensitivity_how = (
             "vectorized kernel" if on_design.vectorized else f"one by one, {mapper.description}"
         )
         problem = salib_problem(study)
         for key in keys:
             result.sensitivity.append(
-                sobol(key, study.keys, problem, on_design.values[key], spec.seed)
+                sobol(key, study.keys, problem, on_design.values[key], replicates)
             )
     result.seconds = time.perf_counter() - start
     return result

@@ -89,8 +89,12 @@ def to_dict(result: StudyResult) -> dict[str, Any]:
         "sensitivity": None
         if not spec.sensitivity
         else {
-            "method": "Sobol (SALib: Saltelli design, sobol.analyze), 95 % bootstrap intervals",
+            "method": (
+                "Sobol (SALib: scrambled Saltelli designs, sobol.analyze); indices the mean "
+                "over independent replicates, 95 % Student-t intervals from their spread"
+            ),
             "base_samples": spec.sensitivity_samples,
+            "replicates": result.sensitivity_replicates,
             "runs": result.sensitivity_runs,
             "how": result.sensitivity_how,
             "indices": {x.key: _indices(x) for x in result.sensitivity},
@@ -168,8 +172,12 @@ def render_rich(result: StudyResult, console: Any) -> None:
             )
         console.print(limits)
     if result.sensitivity:
+        per_design = spec.sensitivity_samples // max(result.sensitivity_replicates, 1)
         sens = Table(
-            title=f"Sobol indices ({result.sensitivity_runs:,} runs, SALib; ± 95 % interval)",
+            title=(
+                f"Sobol indices ({result.sensitivity_runs:,} runs, SALib: "
+                f"{result.sensitivity_replicates} designs × {per_design:,} base samples; ± 95 %)"
+            ),
             title_justify="left",
         )
         for label in ("result", "input", "first order S1", "total ST"):

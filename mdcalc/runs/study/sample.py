@@ -48,13 +48,30 @@ def draws(plan: Plan) -> Any:
     return values(plan, unit_draws(spec.sampler, spec.samples, len(plan.inputs), spec.seed))
 
 
-def saltelli(plan: Plan) -> Any:
-    """The Saltelli design of the Sobol analysis (SALib), N·(D + 2) samples, in the
-    inputs' values."""
-    import numpy as np
+#: Independent scrambled designs of a Sobol analysis, at most; the spread of their
+#: estimates is the interval (randomized QMC). SALib's bootstrap treats the points of
+#: one Sobol' design as independent draws: its intervals came out 3 to 51 times the
+#: real scatter of the indices over seeds (README, Sensitivity).
+SOBOL_REPLICATES = 16
+#: Base samples of one replicate, at least (the estimators standardize by the
+#: replicate's own variance).
+MIN_REPLICATE_SAMPLES = 8
 
+
+def sobol_replicates(base_samples: int) -> int:
+    """How many independent designs ``base_samples`` (a power of 2) divides into:
+    SOBOL_REPLICATES, fewer where a replicate would get under MIN_REPLICATE_SAMPLES
+    (at least 2: one design has no spread)."""
+    return max(2, min(SOBOL_REPLICATES, base_samples // MIN_REPLICATE_SAMPLES))
+
+
+def saltelli(plan: Plan) -> tuple[Any, int]:
+    """The design of the Sobol analysis and its number of replicates R: R independent
+    scrambled Saltelli designs (SALib), each of N/R base samples and N/R·(D + 2) runs,
+    one after the other, in the inputs' values (N = ``sensitivity_samples``, D
+    inputs). The replicates' seeds come from the study's seed alone."""
     try:
-        from SALib.sample import sobol
+        import SALib  # noqa: F401
     except ImportError:
         raise InputError(
             plan.case.path,
@@ -67,13 +84,26 @@ def saltelli(plan: Plan) -> Any:
                 )
             ],
         ) from None
-    problem = salib_problem(plan)
+    u, replicates = sobol_design(salib_problem(plan), plan.spec.sensitivity_samples, plan.spec.seed)
+    return values(plan, u), replicates
+
+
+def sobol_design(problem: dict[str, Any], base_samples: int, seed: int) -> tuple[Any, int]:
+    """(probabilities, R): R independent scrambled Saltelli designs of SALib in the
+    unit cube of ``problem``, one after the other, ``base_samples`` // R base samples
+    each; the designs' seeds from ``seed`` alone (numpy's SeedSequence)."""
+    import numpy as np
+    from SALib.sample import sobol
+
+    replicates = sobol_replicates(base_samples)
+    seeds = np.random.SeedSequence(seed).generate_state(replicates).tolist()
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        u = sobol.sample(
-            problem, plan.spec.sensitivity_samples, calc_second_order=False, seed=plan.spec.seed
-        )
-    return values(plan, np.clip(u, U_MIN, U_MAX))
+        designs = [
+            sobol.sample(problem, base_samples // replicates, calc_second_order=False, seed=s)
+            for s in seeds
+        ]
+    return np.clip(np.concatenate(designs), U_MIN, U_MAX), replicates
 
 
 def salib_problem(plan: Plan) -> dict[str, Any]:

@@ -125,10 +125,15 @@ class Sobol:
     note: str = ""
 
 
-def sobol(key: str, names: list[str], problem: dict[str, Any], column: Any, seed: int) -> Sobol:
-    """SALib's ``sobol.analyze`` (Saltelli/Jansen estimators, bootstrap intervals) on
-    the Saltelli design's results; a note instead where a sample has no value or the
-    result does not vary."""
+def sobol(
+    key: str, names: list[str], problem: dict[str, Any], column: Any, replicates: int
+) -> Sobol:
+    """First-order and total indices from ``replicates`` independent Saltelli designs
+    laid one after the other in ``column``: SALib's ``sobol.analyze`` (Saltelli 2010
+    and Jansen estimators) on each, their mean, and a 95 % Student-t interval from
+    their spread (randomized quasi-Monte Carlo); a note instead where a sample has no
+    value or the result does not vary."""
+    import statistics
     import warnings
 
     import numpy as np
@@ -143,15 +148,26 @@ def sobol(key: str, names: list[str], problem: dict[str, Any], column: Any, seed
         out.note = "the result does not vary over the inputs: no indices"
         return out
     from SALib.analyze import sobol as analyze
+    from scipy.stats import t as student
 
+    first, total = [], []
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        found = analyze.analyze(
-            problem, np.asarray(column, dtype=float), calc_second_order=False, seed=seed
-        )
+        for part in np.split(np.asarray(column, dtype=float), replicates):
+            if float(np.std(part)) == 0.0:  # this replicate saw no change at all
+                first.append(np.zeros(len(names)))
+                total.append(np.zeros(len(names)))
+                continue
+            # The bootstrap's intervals are not used: num_resamples at its least.
+            found = analyze.analyze(problem, part, calc_second_order=False, num_resamples=2, seed=0)
+            first.append(np.asarray(found["S1"], dtype=float))
+            total.append(np.asarray(found["ST"], dtype=float))
+    scale = float(student.ppf(0.975, replicates - 1)) / math.sqrt(replicates)
     for j, name in enumerate(names):
-        out.first[name] = float(found["S1"][j])
-        out.first_conf[name] = float(found["S1_conf"][j])
-        out.total[name] = float(found["ST"][j])
-        out.total_conf[name] = float(found["ST_conf"][j])
+        s1 = [float(r[j]) for r in first]
+        st = [float(r[j]) for r in total]
+        out.first[name] = statistics.fmean(s1)
+        out.first_conf[name] = scale * statistics.stdev(s1)
+        out.total[name] = statistics.fmean(st)
+        out.total_conf[name] = scale * statistics.stdev(st)
     return out
