@@ -185,8 +185,14 @@ def layer_breaches(graph: dict[str, set[str]]) -> list[str]:
                 found.append(f"{module} -> {target}: {b} is above {a}")
             elif RANK[a] == RANK[b] and a != b and (a, b) not in SIBLING_EDGES:
                 found.append(f"{module} -> {target}: {a} -> {b} is not in SIBLING_EDGES")
-            elif a == b == "problems" and problem_of(target) not in (None, "common"):
-                if problem_of(module) != problem_of(target):
+            elif a == b == "problems":
+                source, goal = problem_of(module), problem_of(target)
+                if source == "common" and goal != "common":
+                    found.append(f"{module} -> {target}: common imports a problem or the registry")
+                elif source not in (None, "common") and goal is None:
+                    # A problem reaches the others through the registry just as well.
+                    found.append(f"{module} -> {target}: a problem imports the registry")
+                elif source not in (None, "common") and goal not in (source, "common"):
                     found.append(f"{module} -> {target}: a problem imports another")
     return found
 
@@ -221,6 +227,9 @@ def test_the_sibling_edges_written_down_are_the_ones_there():
         ("mdcalc.problems.braking", "mdcalc.problems.clutch", "a problem imports another"),
         ("mdcalc.problems.hoist.rope", "mdcalc.problems.mount.kernel", "a problem imports"),
         ("mdcalc.runs.runner", "mdcalc", "mdcalc is above runs"),
+        ("mdcalc.problems.mount.solve", "mdcalc.problems", "a problem imports the registry"),
+        ("mdcalc.problems.common.vehicle", "mdcalc.problems.braking", "common imports"),
+        ("mdcalc.problems.common.tables", "mdcalc.problems", "common imports"),
     ],
 )
 def test_a_breach_of_the_layers_is_found(module, target, says):
@@ -244,23 +253,37 @@ def test_the_tree_shows_the_layers():
     assert folders == {"cli", "runs", "problems", "input", "output", "core"}
 
 
-def test_no_package_init_imports_eagerly():
-    # A package's __init__ runs on the import of any module inside it: the layers'
-    # own carry a docstring only (mdcalc's imports its leaf _version alone), so a
-    # piped scene pays for no sibling it does not use (tests/test_imports.py).
-    for init in [PACKAGE / "__init__.py", *(PACKAGE / name / "__init__.py" for name in RANK)]:
-        if not init.exists():
-            continue
-        tree = ast.parse(init.read_text(encoding="utf-8"))
-        imported = [
-            ast.unparse(node) for node in tree.body if isinstance(node, ast.Import | ast.ImportFrom)
-        ]
-        allowed = ["from mdcalc._version import __version__"] if init.parent == PACKAGE else []
-        if init.parent.name == "problems":
-            allowed = [
-                "from __future__ import annotations",
-                "import importlib",
-                "from dataclasses import dataclass",
-                "from typing import TYPE_CHECKING, Any, Protocol, cast",
-            ]
-        assert imported == allowed, init
+#: The __init__.py files that carry a docstring only: a package's __init__ runs on
+#: the import of any module inside it, so a piped scene would pay for every sibling.
+QUIET_INITS = ["cli", "runs", "input", "output", "core", "problems/common"]
+
+
+@pytest.mark.parametrize("folder", QUIET_INITS)
+def test_a_layer_init_imports_nothing(folder):
+    tree = ast.parse((PACKAGE / folder / "__init__.py").read_text(encoding="utf-8"))
+    # Anywhere in it: under TYPE_CHECKING or try as well.
+    imported = [
+        ast.unparse(n) for n in ast.walk(tree) if isinstance(n, ast.Import | ast.ImportFrom)
+    ]
+    assert imported == []
+
+
+def test_the_package_init_imports_its_version_alone():
+    tree = ast.parse((PACKAGE / "__init__.py").read_text(encoding="utf-8"))
+    imported = [
+        ast.unparse(n) for n in ast.walk(tree) if isinstance(n, ast.Import | ast.ImportFrom)
+    ]
+    assert imported == ["from mdcalc._version import __version__"]
+
+
+def test_the_console_script_is_where_pyproject_says():
+    import importlib
+    import tomllib
+
+    with (PACKAGE.parent / "pyproject.toml").open("rb") as handle:
+        project = tomllib.load(handle)
+    module, _, function = project["project"]["scripts"]["mdcalc"].partition(":")
+    assert module == "mdcalc.cli.launch"
+    assert callable(getattr(importlib.import_module(module), function))
+    version = project["tool"]["setuptools"]["dynamic"]["version"]["attr"]
+    assert version == "mdcalc._version.__version__"

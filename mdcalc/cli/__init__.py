@@ -7,7 +7,8 @@
   ``--save``, ``--report``), check, run, sweep, study, new; shell completion.
 - ``command.py``: the bodies of a problem command and of ``run``, and the one error
   handler (exit codes, messages), without typer: shared by launch.py and app.py.
-- ``terminal.py``: progress bars, the run summary, sweep tables (rich).
+- ``terminal.py``: printing a report (plain text on a pipe, rich on a terminal),
+  progress bars, the run summary, sweep tables.
 - ``startup.py``: what every command sets before it runs (warnings, pydantic's
   plugin loader).
 

@@ -8,11 +8,11 @@ A problem's ``report(result)`` builds a :class:`Report` out of sections:
 * :class:`MethodsTable` -- each method's value, relative error against the reference
   method and measured run time (built by :mod:`mdcalc.methods`).
 
-Renderers dispatch on the section type (``functools.singledispatch``), so a new
-section type adds one function per renderer and nothing else changes: here
-:func:`section_grid` (the cells of rich, plain text, HTML and Markdown), in
-:mod:`mdcalc.output.jsondoc` the JSON, in :mod:`mdcalc.output.text` rich and plain
-text.
+Two renderings dispatch on the section type (``functools.singledispatch``), so a
+new section type adds one function to each and nothing else changes: here
+:func:`section_grid`, the cells that rich and plain text (:mod:`mdcalc.output.text`),
+HTML and Markdown (:mod:`mdcalc.output.document`) lay out, and in
+:mod:`mdcalc.output.jsondoc` the JSON.
 
 JSON layout (``format`` 1, stable; documented in the README)::
 

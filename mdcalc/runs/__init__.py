@@ -1,10 +1,12 @@
 """Runs: cases computed, one or many, in this process, a pool or a cluster.
 
 - ``runner.py``: one case: read -> validate -> solve -> report under the time
-  budget, shared by the commands, check, run and sweep; floating point giving up is
+  budget, shared by the commands, check, run, sweep and study; floating point giving up is
   a scene without an answer (exit 3).
 - ``pool.py``: case-file collection and the process pool: results streamed in input
-  order, workers killed on Ctrl-C, a killed worker's items retried.
+  order, workers killed on Ctrl-C and ending by themselves when the parent is killed;
+  where the caller takes failures as results (run, sweep, study), a worker killed by
+  the system costs only the item that killed it.
 - ``cluster.py``: ``--scheduler``: the pool or a dask.distributed cluster behind one
   mapper.
 - ``batch.py``: ``mdcalc run``: one outcome per file, in input order.

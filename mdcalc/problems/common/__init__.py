@@ -1,7 +1,8 @@
 """What several problems share, so that no problem imports another.
 
-- ``tables.py``: coefficient tables with their sources (road adhesion, allowable
-  accelerations by machine type): hoist, braking, acceleration.
+- ``tables.py``: coefficient tables with their sources: road adhesion (braking, and
+  acceleration through vehicle.py), allowable accelerations by machine type and the
+  brake safety factor (hoist).
 - ``vehicle.py``: case sections braking and acceleration share (drag, road
   surfaces, speed in m/s or km/h).
 """
