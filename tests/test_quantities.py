@@ -274,3 +274,27 @@ def test_integer_list_items_take_quantity_strings(cli, write_case):
     data["chain"]["cranks"] = [str(cranks[0]), *cranks[1:]]
     case = validate(module.Case, CaseText(CASES / "x.toml", "", data))
     assert list(case.chain.cranks) == cranks
+
+
+def test_pint_is_imported_without_dask_and_dask_still_imports():
+    # pint's compat module imports dask (90 ms) when it is installed; mdcalc hands
+    # pint no dask arrays. In a fresh process: a conversion loads no dask, and dask
+    # (the --scheduler extra) imports as usual afterwards.
+    import subprocess
+    import sys
+
+    code = (
+        "import sys\n"
+        "from mdcalc.input.quantities import convert\n"
+        "assert abs(convert('52.5 N*m/deg', 'N·m/rad') - 52.5 * 180 / 3.141592653589793) < 1e-9\n"
+        "print('dask' in sys.modules)\n"
+        "try:\n"
+        "    import dask.array\n"
+        "    print(dask.array.ones(3).sum().compute())\n"
+        "except ImportError:\n"
+        "    print('no dask here')\n"
+    )
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    loaded, after = done.stdout.split("\n", 1)
+    assert loaded == "False"
+    assert after.strip() in ("3.0", "no dask here")

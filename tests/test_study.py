@@ -509,3 +509,21 @@ def test_sensitivity_samples_divide_among_replicates():
 
     # 16 designs where each gets 8 base samples or more; never fewer than 2.
     assert [sobol_replicates(n) for n in (16, 32, 64, 128, 256, 8192)] == [2, 4, 8, 16, 16, 16]
+
+
+def test_timing_splits_set_up_samples_and_sobol(tmp_path):
+    # seconds is the whole; set-up, samples and Sobol are its parts, and the rate
+    # counts the study's samples (not the design's runs) over their evaluation only.
+    text = BRAKING.format(samples=4096, sampler="random").replace(
+        "[study]\n", "[study]\nsensitivity = true\nsensitivity_samples = 256\n"
+    )
+    done = run_script("study", study_file(tmp_path, text), "--json", "--jobs", "1")
+    assert done.returncode == 0, done.stderr
+    document = strict_json(done.stdout)
+    parts = [document[k] for k in ("setup_seconds", "sampling_seconds", "sensitivity_seconds")]
+    assert all(p > 0 for p in parts)
+    assert sum(parts) <= document["seconds"] <= sum(parts) + 0.5
+    assert document["samples_per_second"] == pytest.approx(4096 / parts[1], rel=1e-12)
+    assert (
+        document["sensitivity"]["runs"] == 256 * 3 and document["sensitivity"]["replicates"] == 16
+    )

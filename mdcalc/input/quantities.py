@@ -67,7 +67,7 @@ def registry() -> Any:
     """pint's English registry with the changes above; built once per process."""
     import os
 
-    import pint
+    pint = _import_pint()
 
     folder = os.path.dirname(pint.__file__)
     lines: list[str] = []
@@ -86,6 +86,28 @@ def registry() -> Any:
     for definition in _ADDED:
         ureg.define(definition)
     return ureg
+
+
+#: What pint's compat module imports when it is installed, for array types mdcalc
+#: never gives it: dask alone is 90 ms of a study's set-up.
+_PINT_EXTRAS = ("dask", "xarray")
+
+
+def _import_pint() -> Any:
+    """pint, imported without the array libraries it would wrap (a module not yet
+    imported is held back while pint looks for it; one already imported is left)."""
+    import sys
+
+    held = [name for name in _PINT_EXTRAS if name not in sys.modules]
+    for name in held:
+        sys.modules[name] = None  # type: ignore[assignment]  # import raises ImportError
+    try:
+        import pint
+    finally:
+        for name in held:
+            if sys.modules.get(name, False) is None:
+                del sys.modules[name]
+    return pint
 
 
 def field_unit(unit: str) -> str:

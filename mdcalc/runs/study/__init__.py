@@ -31,7 +31,7 @@ class StudyResult:
     samples: Any  # (samples, inputs)
     evaluated: Evaluated
     how: str
-    seconds: float
+    seconds: float  # the whole study, from reading the plan to the last summary [s]
     stats: dict[str, Stats | None] = field(default_factory=dict)
     limits: list[Exceedance] = field(default_factory=list)
     sensitivity: list[Sobol] = field(default_factory=list)
@@ -39,11 +39,17 @@ class StudyResult:
     sensitivity_replicates: int = 0
     sensitivity_how: str = ""
     time_limit: float | None = None
+    #: Imports, quantity strings, the plan, the nominal scene and the draws [s].
+    setup_seconds: float = 0.0
+    #: The samples' evaluation [s] (the Sobol design's is sensitivity_seconds).
+    sampling_seconds: float = 0.0
+    #: The Sobol design's evaluation and the indices [s].
+    sensitivity_seconds: float = 0.0
 
     @property
     def samples_per_second(self) -> float:
-        runs = len(self.samples) + self.sensitivity_runs
-        return runs / max(self.seconds, 1e-9)
+        """The study's samples (not the Sobol design's runs) over their evaluation."""
+        return len(self.samples) / max(self.sampling_seconds, 1e-9)
 
     def values(self) -> dict[str, float]:
         """Every summary number by a flat key (what ``[expect]`` may name):
@@ -102,15 +108,19 @@ def run(
     design, replicates = saltelli(study) if spec.sensitivity else (None, 0)
     if on_total is not None:
         on_total(len(samples) + (0 if design is None else len(design)))
+    sampling = time.perf_counter()
     evaluated = evaluate(study, samples, keys, mapper, on_done, time_limit)
+    done = time.perf_counter()
     how = "vectorized kernel" if evaluated.vectorized else f"one by one, {mapper.description}"
     result = StudyResult(study, keys, units, samples, evaluated, how, 0.0, time_limit=time_limit)
+    result.setup_seconds, result.sampling_seconds = sampling - start, done - sampling
     for key in keys:
         result.stats[key] = stats(key, units.get(key, ""), evaluated.values[key])
     for key, limit in spec.limits.items():
         column = evaluated.values[key]
         result.limits.append(exceedance(key, units.get(key, ""), column, limit.above, limit.below))
     if design is not None:
+        sensitivity = time.perf_counter()
         on_design = evaluate(study, design, keys, mapper, on_done, time_limit)
         result.sensitivity_runs = len(design)
         result.sensitivity_replicates = replicates
@@ -122,5 +132,6 @@ def run(
             result.sensitivity.append(
                 sobol(key, study.keys, problem, on_design.values[key], replicates)
             )
+        result.sensitivity_seconds = time.perf_counter() - sensitivity
     result.seconds = time.perf_counter() - start
     return result

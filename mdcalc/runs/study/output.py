@@ -40,6 +40,9 @@ def to_dict(result: StudyResult) -> dict[str, Any]:
         "seed": spec.seed,
         "how": result.how,
         "seconds": result.seconds,
+        "setup_seconds": result.setup_seconds,
+        "sampling_seconds": result.sampling_seconds,
+        "sensitivity_seconds": result.sensitivity_seconds,
         "samples_per_second": result.samples_per_second,
         "budget": {"time_limit_s": result.time_limit},
         "inputs": [
@@ -130,8 +133,15 @@ def render_rich(result: StudyResult, console: Any) -> None:
     n = len(result.samples)
     console.print(f"[bold]Study: {title}[/bold]")
     console.print(
-        f"{plan.problem}, {n:,} samples ({spec.sampler}, seed {spec.seed}), {result.how}; "
-        f"{format_seconds(result.seconds)}, {result.samples_per_second:,.0f} samples/s",
+        f"{plan.problem}, {n:,} samples ({spec.sampler}, seed {spec.seed}), {result.how}\n"
+        f"{format_seconds(result.seconds)} in all: set-up {format_seconds(result.setup_seconds)}, "
+        f"samples {format_seconds(result.sampling_seconds)} "
+        f"({result.samples_per_second:,.0f} samples/s)"
+        + (
+            f", Sobol {format_seconds(result.sensitivity_seconds)}"
+            if result.sensitivity_runs
+            else ""
+        ),
         highlight=False,
     )
     inputs = Table(title="Inputs", title_justify="left")
