@@ -22,13 +22,13 @@ exactly. All closed forms: no numpy, no scipy.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Literal
 
 from pydantic import Field, model_validator
 
 from mdcalc.core.xp import of
-from mdcalc.input.model import CaseBase, CaseModel, FieldError
+from mdcalc.input.model import CaseBase, CaseModel, FieldError, with_values
 from mdcalc.methods import Method, NotApplicable, compare
 from mdcalc.output.report import (
     Column,
@@ -111,11 +111,16 @@ class Clutch(CaseModel):
         return self
 
     @property
-    def feedback(self) -> float:
+    def feedback(self) -> Any:
+        """C [-]: given, or (R_cp/r)·tan α (floats, or arrays over a sweep's grid)."""
         if self.gain is not None:
             return self.gain
-        assert self.mean_radius and self.rolling_radius and self.ramp_angle_deg
-        return self.mean_radius / self.rolling_radius * math.tan(math.radians(self.ramp_angle_deg))
+        assert self.mean_radius is not None and self.rolling_radius is not None
+        assert self.ramp_angle_deg is not None
+        xp = of(self.mean_radius, self.rolling_radius, self.ramp_angle_deg)
+        # α·(π/180) is math.radians' very product.
+        alpha = self.ramp_angle_deg * (math.pi / 180.0)
+        return self.mean_radius / self.rolling_radius * xp.tan(alpha)
 
 
 class Curves(CaseModel):
@@ -187,11 +192,11 @@ def gain_bound(fr: Friction) -> Any:
     )
 
 
-def gain_bound_one_material(z2: int, f: float, eta: float) -> float:
-    """(27): C_max = π/(4·z₂·f·η(1 - η))."""
-    if eta >= 1.0:
-        return math.inf
-    return math.pi / (4.0 * z2 * f * eta * (1.0 - eta))
+def gain_bound_one_material(z2: Any, f: Any, eta: Any) -> Any:
+    """(27): C_max = π/(4·z₂·f·η(1 - η)); inf for η = 1."""
+    return of(z2, f, eta).where(
+        eta >= 1.0, lambda: math.inf, lambda: math.pi / (4.0 * z2 * f * eta * (1.0 - eta))
+    )
 
 
 @dataclass(frozen=True)
@@ -206,7 +211,7 @@ class Torques:
     amplitude: float  # T_a (25) [N·m]
 
 
-def torques(fr: Friction, force: float, radius: float, gain: float) -> Torques:
+def torques(fr: Friction, force: Any, radius: Any, gain: Any) -> Torques:
     b = gain * fr.z2 * fr.f2
     scale = force * radius / (1.0 + b)
     return Torques(
@@ -241,6 +246,53 @@ def bound_by_bisection(fr: Friction) -> float:
         else:
             high = middle
     return 0.5 * (low + high)
+
+
+def pair_numbers(fr: Friction) -> dict[str, Any]:
+    """The numbers of the friction pairs: S₀, S₁, C_max (26) (inf for η₂ = 1) and,
+    where η₁ = η₂, C_max by (27) (missing elsewhere). Floats, or arrays."""
+    xp = of(*vars(fr).values())
+    return {
+        "static_sum": fr.static_sum,
+        "sliding_sum": fr.sliding_sum,
+        "c_max": gain_bound(fr),
+        "c_max_one_material": xp.where(
+            fr.eta1 == fr.eta2,
+            lambda: gain_bound_one_material(fr.z2, fr.f2, fr.eta2),
+            lambda: xp.missing,
+        ),
+    }
+
+
+def gain_numbers(clutch: Clutch, fr: Friction, bound: Any) -> dict[str, Any]:
+    """The numbers of the gain section: C, b, the gain margin C_max/C (inf for an
+    unbounded C_max, missing for C = 0) and, with a spring force, the torques (18)-(25)
+    and the margin π·T_n - 4(T_a - T_c). Floats, or arrays over a sweep's grid."""
+    gain = clutch.feedback
+    xp = of(gain, bound)
+    out: dict[str, Any] = {
+        "gain": gain,
+        "feedback": gain * fr.z2 * fr.f2,
+        "gain_margin": xp.where(
+            bound == math.inf,
+            lambda: math.inf,
+            lambda: xp.where(gain > 0.0, lambda: bound / gain, lambda: xp.missing),
+        ),
+    }
+    if clutch.spring_force is not None:
+        assert clutch.mean_radius is not None
+        t = torques(fr, clutch.spring_force, clutch.mean_radius, gain)
+        out |= {
+            "spreading_force": t.spreading,
+            "pack_force": t.pack,
+            "limit_torque": t.limit,
+            "sliding_torque": t.sliding,
+            "relaxed_spreading_force": t.relaxed_spreading,
+            "first_amplitude": t.amplitude,
+            "overshoot": t.amplitude / t.limit,
+            "torque_margin": math.pi * t.limit - 4.0 * (t.amplitude - t.sliding),
+        }
+    return out
 
 
 # ------------------------------------------------------------------------- result
@@ -315,9 +367,10 @@ def report(result: Result) -> Report:
     case, fr = result.case, result.friction
     title = case.title or "Adaptive friction clutch: stability of the self-oscillation"
     notes: list[Note] = []
+    numbers = pair_numbers(fr)
     pairs = [
-        Quantity("static_sum", "S₀ = z₁f₁ + z₂f₂", fr.static_sum, ""),
-        Quantity("sliding_sum", "S₁ = z₁η₁f₁ + z₂η₂f₂", fr.sliding_sum, ""),
+        Quantity("static_sum", "S₀ = z₁f₁ + z₂f₂", numbers["static_sum"], ""),
+        Quantity("sliding_sum", "S₁ = z₁η₁f₁ + z₂η₂f₂", numbers["sliding_sum"], ""),
         Quantity(
             "c_max",
             "Gain bound (26) C_max = π·S₀/[4·z₂f₂·S₁·(1 - η₂)]",
@@ -326,12 +379,12 @@ def report(result: Result) -> Report:
             "η₂ = 1: no drop of friction in the driven pairs" if math.isinf(result.bound) else "",
         ),
     ]
-    if fr.eta1 == fr.eta2:
+    if numbers["c_max_one_material"] is not None:
         pairs.append(
             Quantity(
                 "c_max_one_material",
                 "(27) η₁ = η₂ = η: π/(4·z₂·f₂·η(1 - η))",
-                _bound_value(gain_bound_one_material(fr.z2, fr.f2, fr.eta2)),
+                _bound_value(numbers["c_max_one_material"]),
                 "",
             )
         )
@@ -354,46 +407,46 @@ def report(result: Result) -> Report:
 
 
 def _gain_section(clutch: Clutch, fr: Friction, bound: float, notes: list[Note]) -> Quantities:
-    gain = clutch.feedback
-    b = gain * fr.z2 * fr.f2
+    n = gain_numbers(clutch, fr, bound)
+    gain = n["gain"]
     items = [
         Quantity("gain", "Feedback gain C = (R_cp/r)·tan α", gain, ""),
-        Quantity("feedback", "b = C·z₂·f₂", b, ""),
+        Quantity("feedback", "b = C·z₂·f₂", n["feedback"], ""),
     ]
     stable = gain < bound
     if math.isinf(bound):
         items.append(Quantity("gain_margin", "Gain margin C_max/C", UNBOUNDED, ""))
-    elif gain > 0.0:
+    elif n["gain_margin"] is not None:
         items.append(
             Quantity(
                 "gain_margin",
                 "Gain margin C_max/C",
-                bound / gain,
+                n["gain_margin"],
                 "",
                 "= π·T_n/(4(T_a - T_c)) exactly",
             )
         )
     items.append(Quantity("stable", "Self-oscillation decays, 4(T_a - T_c) < π·T_n", stable, ""))
     if clutch.spring_force is not None:
-        assert clutch.mean_radius is not None
-        t = torques(fr, clutch.spring_force, clutch.mean_radius, gain)
         items += [
-            Quantity("spreading_force", "Spreading force (18) F_p", t.spreading, "N"),
-            Quantity("pack_force", "Pack force F_n - F_p", t.pack, "N"),
-            Quantity("limit_torque", "Limit torque before slip (19) T_n", t.limit, "N·m"),
-            Quantity("sliding_torque", "Sliding torque at the slip (20) T_c", t.sliding, "N·m"),
+            Quantity("spreading_force", "Spreading force (18) F_p", n["spreading_force"], "N"),
+            Quantity("pack_force", "Pack force F_n - F_p", n["pack_force"], "N"),
+            Quantity("limit_torque", "Limit torque before slip (19) T_n", n["limit_torque"], "N·m"),
+            Quantity(
+                "sliding_torque", "Sliding torque at the slip (20) T_c", n["sliding_torque"], "N·m"
+            ),
             Quantity(
                 "relaxed_spreading_force",
                 "Spreading force while sliding (23) F₁p",
-                t.relaxed_spreading,
+                n["relaxed_spreading_force"],
                 "N",
             ),
-            Quantity("first_amplitude", "First amplitude (25) T_a", t.amplitude, "N·m"),
-            Quantity("overshoot", "T_a/T_n", t.amplitude / t.limit, ""),
+            Quantity("first_amplitude", "First amplitude (25) T_a", n["first_amplitude"], "N·m"),
+            Quantity("overshoot", "T_a/T_n", n["overshoot"], ""),
             Quantity(
                 "torque_margin",
                 "π·T_n - 4(T_a - T_c)",
-                math.pi * t.limit - 4.0 * (t.amplitude - t.sliding),
+                n["torque_margin"],
                 "N·m",
                 "the torque amplitude falls by this much a cycle"
                 if stable
@@ -534,31 +587,44 @@ def _eta_text(eta: float) -> str:
 
 # ------------------------------------------------------------------------- sweep
 
-#: Keys ``mdcalc sweep`` may vary in the vectorized form, and the quantity each sets.
+#: Keys ``mdcalc sweep`` and ``mdcalc study`` may vary in the vectorized form.
 SWEEP_KEYS = {
-    "pairs.driving": "z1",
-    "pairs.driven": "z2",
-    "pairs.driving_friction": "f1",
-    "pairs.driven_friction": "f2",
-    "pairs.driving_ratio": "eta1",
-    "pairs.driven_ratio": "eta2",
+    "pairs.driving": "z₁",
+    "pairs.driven": "z₂",
+    "pairs.driving_friction": "f₁",
+    "pairs.driven_friction": "f₂",
+    "pairs.driving_ratio": "η₁",
+    "pairs.driven_ratio": "η₂",
+    "clutch.gain": "C",
+    "clutch.rolling_radius": "r",
+    "clutch.ramp_angle_deg": "α",
+    "clutch.mean_radius": "R_cp",
+    "clutch.spring_force": "F_n",
 }
 
 
 def sweep(case: Case, grid: dict[str, Any]) -> dict[str, Any] | None:
-    """The key result C_max (26) over a grid of pair data at once (numpy); missing
-    (NaN) where η₂ = 1, as the report shows "unbounded" there. None for other keys."""
+    """Every numeric result of the report over a grid at once (numpy), by the same
+    functions the report calls (:func:`pair_numbers`, :func:`gain_numbers`) on the
+    case with the grid's arrays in it. Missing (NaN) where the report shows
+    "unbounded" (η₂ = 1) or leaves a number out (no C_max/C for C = 0, no (27) where
+    η₁ ≠ η₂). None for keys it does not vary."""
     import numpy as np
 
     if any(key not in SWEEP_KEYS for key in grid):
         return None
-    fr = friction_of(case)
-    given: dict[str, Any] = {
-        SWEEP_KEYS[key]: np.asarray(values, dtype=float) for key, values in grid.items()
-    }
-    arrays = replace(fr, **given)
-    # The report shows "unbounded" for η₂ = 1: missing (NaN) in the sweep.
-    return {"c_max": np.where(arrays.eta2 < 1.0, gain_bound(arrays), np.nan)}
+    arrays = with_values(case, {key: np.asarray(v, dtype=float) for key, v in grid.items()})
+    fr = friction_of(arrays)
+    numbers = pair_numbers(fr)
+    if arrays.clutch is not None:
+        numbers |= gain_numbers(arrays.clutch, fr, numbers["c_max"])
+    size = max(np.size(v) for v in grid.values())
+    out = {}
+    with np.errstate(all="ignore"):
+        for key, value in numbers.items():
+            column = np.broadcast_to(np.asarray(np.nan if value is None else value, float), size)
+            out[key] = np.where(np.isinf(column), np.nan, column)  # "unbounded": no number
+    return out
 
 
 def template() -> dict[str, Any]:

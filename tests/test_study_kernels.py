@@ -1,0 +1,135 @@
+"""A study's kernel gives every sample the value its single scene gives.
+
+For each problem with a vectorized kernel and each of its shipped case files, 50
+random samples of every key the kernel varies (each key scattered below its value,
+so the upper bounds hold; integer keys by whole steps) are solved at once by the
+kernel and one by one as single scenes in this process, and every result key the
+kernel returns must equal the single scene's to 1e-9 relative (NaN where the single
+scene has no number: "unbounded", or a quantity it leaves out). A scene whose single
+run takes long (ODE check rows) is compared on 10 of the samples.
+
+Problems whose kernel gives every numeric result of the report are listed in
+EVERY_KEY; for them the kernel must return each numeric key the single scene has.
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+import time
+import tomllib
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from mdcalc.problems import PROBLEMS
+from tests.conftest import CASES
+
+KERNELS = [name for name, spec in PROBLEMS.items() if hasattr(spec.load(), "SWEEP_KEYS")]
+#: The problems whose kernel covers every numeric result key (issue 31, item 1).
+EVERY_KEY = {"clutch"}
+SAMPLES = 50
+
+
+def held(data: dict, key: str) -> float | None:
+    node = data
+    for part in key.split("."):
+        if not isinstance(node, dict) or part not in node:
+            return None
+        node = node[part]
+    return node if isinstance(node, int | float) and not isinstance(node, bool) else None
+
+
+def put(data: dict, key: str, value: float) -> None:
+    *path, last = key.split(".")
+    node = data
+    for part in path:
+        node = node[part]
+    node[last] = value
+
+
+CASE_FILES = [
+    (name, path)
+    for name in KERNELS
+    for path in sorted((CASES / name).glob("*.toml"))
+    + sorted((CASES / "extreme").glob(f"{name}_*.toml"))
+]
+
+
+@pytest.mark.parametrize(("name", "path"), CASE_FILES, ids=[f"{n}:{p.name}" for n, p in CASE_FILES])
+def test_kernel_equals_single_scenes_on_random_samples(name: str, path: Path, monkeypatch):
+    from mdcalc import methods
+    from mdcalc.errors import InputError
+    from mdcalc.input.casefile import CaseText, is_integer_field, validate
+    from mdcalc.runs.runner import solve_model
+
+    module = PROBLEMS[name].load()
+    data = tomllib.loads(path.read_text(encoding="utf-8"))
+    data.pop("expect", None)
+    keys = [k for k in module.SWEEP_KEYS if held(data, k) not in (None, 0)]
+    if not keys:
+        pytest.skip("the case holds no key the kernel varies")
+
+    def valid(sample: dict) -> bool:
+        try:
+            validate(module.Case, CaseText(path, "", sample))
+        except InputError:
+            return False
+        return True
+
+    # Each key scattered below its value, or above where the value is at a lower bound.
+    spans = {}
+    for key in keys:
+        lower = copy.deepcopy(data)
+        put(lower, key, float(held(data, key) or 0.0) * 0.9)
+        spans[key] = (0.8, 1.0) if valid(lower) else (1.0, 1.25)
+    rng = np.random.default_rng(31)
+    rows, models = [], []
+    for _ in range(4 * SAMPLES):
+        sample = copy.deepcopy(data)
+        row = []
+        for key in keys:
+            value = held(data, key)
+            assert value is not None
+            new: float
+            if is_integer_field(module.Case, tuple(key.split("."))):
+                new = int(value) + int(rng.integers(0, 3)) if value < 50 else int(value)
+            else:
+                new = float(value) * rng.uniform(*spans[key])
+            put(sample, key, new)
+            row.append(float(new))
+        if not valid(sample):
+            continue  # a sample outside a bound or a cross-field rule: not a scene
+        models.append(validate(module.Case, CaseText(path, "", sample)))
+        rows.append(row)
+        if len(rows) == SAMPLES:
+            break
+    assert len(rows) >= SAMPLES // 2, "too few valid samples"
+    grid = {key: np.array([r[j] for r in rows]) for j, key in enumerate(keys)}
+    answer = module.sweep(validate(module.Case, CaseText(path, "", data)), grid)
+    if answer is None:
+        pytest.skip("the scene needs the point-by-point path (an ODE or a no-answer point)")
+    monkeypatch.setattr(methods, "MIN_TIMING_SECONDS", 2e-5)  # timings are not compared
+    checked = len(models)
+    for index, model in enumerate(models):
+        if index == checked:
+            break
+        start = time.perf_counter()
+        _, report = solve_model(name, module, model, None)
+        if index == 0 and time.perf_counter() - start > 0.05:
+            checked = 10  # a scene with ODE check rows: 10 samples, as for ODE references
+        numbers = {
+            key: float(q.value)
+            for key, q in report.results().items()
+            if isinstance(q.value, int | float) and not isinstance(q.value, bool)
+        }
+        if name in EVERY_KEY:
+            assert set(numbers) <= set(answer), set(numbers) - set(answer)
+        for key, column in answer.items():
+            got = float(np.broadcast_to(np.asarray(column, dtype=float), len(models))[index])
+            want = numbers.get(key, math.nan)
+            if math.isnan(want) or math.isinf(want):
+                assert math.isnan(got), (key, index, got, want)
+            else:
+                assert got == pytest.approx(want, rel=1e-9, abs=0.0), (key, index)
