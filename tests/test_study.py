@@ -140,7 +140,7 @@ def test_sobol_indices_of_a_linear_scene(tmp_path):
     assert not indices.note
     for key in c:
         expected = (c[key] * sd[key]) ** 2 / total
-        # SALib's bootstrap 95 % interval is about 2σ: 4σ is twice it.
+        # The 95 % interval over the designs is about 2σ: 4σ is twice it.
         assert abs(indices.first[key] - expected) < 2 * indices.first_conf[key] + 0.01, key
         assert abs(indices.total[key] - expected) < 2 * indices.total_conf[key] + 0.01, key
     assert result.evaluated.vectorized
@@ -527,3 +527,26 @@ def test_timing_splits_set_up_samples_and_sobol(tmp_path):
     assert (
         document["sensitivity"]["runs"] == 256 * 3 and document["sensitivity"]["replicates"] == 16
     )
+
+
+def test_a_design_whose_result_does_not_change_is_left_out_and_said():
+    # A result that changes only in a rare corner (x1 > 0.995): several of the 16
+    # designs see no change, and their indices would be 0/0. They are left out, the
+    # interval uses the others, and a note says so; with fewer than 2 left, no indices.
+    from mdcalc.runs.study.sample import sobol_design
+    from mdcalc.runs.study.summary import sobol
+
+    names = ["x1", "x2"]
+    problem = {"num_vars": 2, "names": names, "bounds": [[0.0, 1.0]] * 2}
+    u, replicates = sobol_design(problem, 1024, 5)
+    rare = np.where(u[:, 0] > 0.995, 1.0 + u[:, 1], 0.0)
+    per_design = np.split(rare, replicates)
+    flat = sum(float(np.std(part)) == 0.0 for part in per_design)
+    assert 2 <= flat <= replicates - 2  # the case this test is about
+    found = sobol("y", names, problem, rare, replicates)
+    assert f"within {flat} of the {replicates} designs" in found.note
+    assert set(found.first) == set(names) and all(math.isfinite(v) for v in found.first.values())
+    almost_never = np.zeros(len(u))
+    almost_never[len(u) - 1] = 1.0  # one change, in the last design
+    none = sobol("y", names, problem, almost_never, replicates)
+    assert none.first == {} and "changed in 1 of the 16 designs" in none.note

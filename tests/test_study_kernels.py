@@ -133,3 +133,62 @@ def test_kernel_equals_single_scenes_on_random_samples(name: str, path: Path, mo
                 assert math.isnan(got), (key, index, got, want)
             else:
                 assert got == pytest.approx(want, rel=1e-9, abs=0.0), (key, index)
+
+
+@pytest.mark.parametrize(
+    ("pairs", "clutch"),
+    [
+        ({}, {"gain": 0.0}),  # no feedback: no gain margin
+        ({"driven_ratio": 1.0}, {}),  # η₂ = 1: C_max unbounded
+        ({"driving_ratio": 0.8, "driven_ratio": 0.8}, {}),  # η₁ = η₂: (27) too
+        ({"driving_ratio": 1.0, "driven_ratio": 1.0}, {}),  # (27) unbounded as well
+        ({}, {"spring_force": None}),  # no spring force: no torques
+        ({}, None),  # no [clutch] section: the pairs alone
+    ],
+)
+def test_clutch_kernel_at_the_edges_of_its_scene(pairs, clutch):
+    # The random samples above never reach these: fixed grids on each edge, the
+    # kernel against single scenes, every key.
+    from mdcalc.input.casefile import CaseText, validate
+    from mdcalc.runs.runner import solve_model
+
+    module = PROBLEMS["clutch"].load()
+    path = CASES / "clutch" / "fig2_differentiated.toml"
+    data = tomllib.loads(path.read_text(encoding="utf-8"))
+    data.pop("expect", None)
+    data.pop("curves", None)
+    data["pairs"] |= pairs
+    if clutch is None:
+        data.pop("clutch")
+    else:
+        for key, value in clutch.items():
+            if value is None:
+                data["clutch"].pop(key)
+            else:
+                if key == "gain":  # a gain given replaces the ramp's, if any
+                    data["clutch"].pop("rolling_radius", None)
+                    data["clutch"].pop("ramp_angle_deg", None)
+                data["clutch"][key] = value
+    friction = [0.2, 0.3, 0.4]  # vary f₁: every edge above holds at each point
+    grid = {"pairs.driving_friction": np.array(friction)}
+    answer = module.sweep(validate(module.Case, CaseText(path, "", data)), grid)
+    assert answer is not None
+    for index, f1 in enumerate(friction):
+        point = copy.deepcopy(data)
+        point["pairs"]["driving_friction"] = f1
+        _, report = solve_model(
+            "clutch", module, validate(module.Case, CaseText(path, "", point)), None
+        )
+        numbers = {
+            key: float(q.value)
+            for key, q in report.results().items()
+            if isinstance(q.value, int | float) and not isinstance(q.value, bool)
+        }
+        assert set(numbers) <= set(answer), set(numbers) - set(answer)
+        for key, column in answer.items():
+            got = float(np.broadcast_to(np.asarray(column, dtype=float), len(friction))[index])
+            want = numbers.get(key, math.nan)
+            if math.isnan(want):
+                assert math.isnan(got), (key, got)
+            else:
+                assert got == pytest.approx(want, rel=1e-12, abs=0.0), key

@@ -26,7 +26,7 @@ from typing import Any, TypeVar
 from mdcalc.errors import InputError, Problem
 
 #: A worker's exit status when it ends because its parent is gone (as after SIGHUP).
-EXIT_ORPHANED = 128 + signal.SIGHUP
+EXIT_ORPHANED = 129  # 128 + SIGHUP's number on Linux (signal.SIGHUP is not on Windows)
 
 T = TypeVar("T")
 R = TypeVar("R")

@@ -108,7 +108,7 @@ def to_dict(result: StudyResult) -> dict[str, Any]:
 
 
 def _indices(sobol: Sobol) -> dict[str, dict[str, float]] | None:
-    if sobol.note:
+    if not sobol.first:  # a note says why there are none
         return None
     return {
         name: {
@@ -193,9 +193,6 @@ def render_rich(result: StudyResult, console: Any) -> None:
         for label in ("result", "input", "first order S1", "total ST"):
             sens.add_column(label, justify="left" if label in ("result", "input") else "right")
         for sob in result.sensitivity:
-            if sob.note:
-                sens.add_row(sob.key, "—", sob.note, "")
-                continue
             for name in sob.first:
                 sens.add_row(
                     sob.key,
@@ -203,6 +200,8 @@ def render_rich(result: StudyResult, console: Any) -> None:
                     f"{sob.first[name]:.3f} ± {sob.first_conf[name]:.3f}",
                     f"{sob.total[name]:.3f} ± {sob.total_conf[name]:.3f}",
                 )
+            if sob.note:  # no indices, or indices from fewer designs
+                sens.add_row(sob.key, "—", sob.note, "")
         console.print(sens)
     failed = sum(ev.counts.values())
     if failed:
@@ -294,7 +293,7 @@ def charts(result: StudyResult) -> list[Any]:
         )
     names = result.plan.keys
     for key in result.keys:
-        sens = next((s for s in result.sensitivity if s.key == key and not s.note), None)
+        sens = next((s for s in result.sensitivity if s.key == key and s.first), None)
         if sens is not None:
             values = [sens.total[n] for n in names]
             label, what = "Sobol total index ST", "sensitivity"

@@ -151,18 +151,30 @@ def sobol(
     from scipy.stats import t as student
 
     first, total = [], []
+    flat = 0  # designs whose result varies by rounding only: their indices are 0/0
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         for part in np.split(np.asarray(column, dtype=float), replicates):
-            if float(np.std(part)) == 0.0:  # this replicate saw no change at all
-                first.append(np.zeros(len(names)))
-                total.append(np.zeros(len(names)))
+            if float(np.std(part)) <= 1e-12 * max(float(np.max(np.abs(part))), 1e-300):
+                flat += 1
                 continue
             # The bootstrap's intervals are not used: num_resamples at its least.
             found = analyze.analyze(problem, part, calc_second_order=False, num_resamples=2, seed=0)
             first.append(np.asarray(found["S1"], dtype=float))
             total.append(np.asarray(found["ST"], dtype=float))
-    scale = float(student.ppf(0.975, replicates - 1)) / math.sqrt(replicates)
+    used = replicates - flat
+    if used < 2:
+        out.note = (
+            f"the result changed in {used} of the {replicates} designs: no indices "
+            "(a rare change needs more sensitivity_samples)"
+        )
+        return out
+    if flat:
+        out.note = (
+            f"the result did not change within {flat} of the {replicates} designs: the "
+            f"indices rest on the other {used} and may be off (more sensitivity_samples)"
+        )
+    scale = float(student.ppf(0.975, used - 1)) / math.sqrt(used)
     for j, name in enumerate(names):
         s1 = [float(r[j]) for r in first]
         st = [float(r[j]) for r in total]
