@@ -26,19 +26,13 @@ import pytest
 from mdcalc.problems import PROBLEMS
 from tests.conftest import CASES
 
-KERNELS = [name for name, spec in PROBLEMS.items() if hasattr(spec.load(), "SWEEP_KEYS")]
+# The kernel problems, their shipped cases, and a key held in a case: as the sweep test.
+from tests.test_sweep_kernels import CASE_FILES
+from tests.test_sweep_kernels import _held as held
+
 #: The problems whose kernel covers every numeric result key (issue 31, item 1).
 EVERY_KEY = {"clutch"}
 SAMPLES = 50
-
-
-def held(data: dict, key: str) -> float | None:
-    node = data
-    for part in key.split("."):
-        if not isinstance(node, dict) or part not in node:
-            return None
-        node = node[part]
-    return node if isinstance(node, int | float) and not isinstance(node, bool) else None
 
 
 def put(data: dict, key: str, value: float) -> None:
@@ -47,14 +41,6 @@ def put(data: dict, key: str, value: float) -> None:
     for part in path:
         node = node[part]
     node[last] = value
-
-
-CASE_FILES = [
-    (name, path)
-    for name in KERNELS
-    for path in sorted((CASES / name).glob("*.toml"))
-    + sorted((CASES / "extreme").glob(f"{name}_*.toml"))
-]
 
 
 @pytest.mark.parametrize(("name", "path"), CASE_FILES, ids=[f"{n}:{p.name}" for n, p in CASE_FILES])
