@@ -445,7 +445,11 @@ def test_valid_draws_compute_or_explain(name, run):
             else:
                 assert_clean_output(as_text, as_json=False)
                 assert_clean_output(as_json, as_json=True)
-                assert as_json.exit_code == as_text.exit_code
+                if as_json.exit_code != as_text.exit_code:
+                    # Wall time: near its budget a scene may be cut in one run and not
+                    # in the other (CI once cut the text run, exit 3, not the JSON one).
+                    said = as_text.stdout + as_text.stderr + as_json.stdout + as_json.stderr
+                    assert "time budget" in said, (as_text.exit_code, as_json.exit_code)
         except AssertionError:
             counts["failures"] += 1
             raise
