@@ -15,6 +15,7 @@ import tempfile
 import time
 from collections.abc import Callable
 from pathlib import Path
+from typing import Any
 
 ROOT = Path(__file__).resolve().parent.parent
 MDCALC = str(Path(sys.executable).parent / "mdcalc")
@@ -295,6 +296,69 @@ def mine_hoist() -> None:
         row(f"mine-hoist {name}: modal solution (the reference)", f"{modal * 1e3:.2f} ms", "", True)
 
 
+#: One scene per problem for the study rates, and the key each study draws (±5 %).
+RATE_SCENES = [
+    ("braking", "braking/dry.toml", "vehicle.mass"),
+    ("mount", "mount/example_9_1.toml", "mounts.static_deflection"),
+    ("coupling", "coupling/example_8_1.toml", "coupling.absorption"),
+    ("clutch", "clutch/fig2_differentiated.toml", "clutch.spring_force"),
+    ("hoist (no rope)", "studies/hoist_load.toml", "load.mass"),
+    ("hoist (rope)", "hoist/crane.toml", "load.mass"),
+    ("mine-hoist", "studies/mine_hoist_rope.toml", "hoist.rope_stiffness"),
+    ("resonance", "resonance/inline_six.toml", "chain.stiffnesses.6"),
+    ("variator", "variator/two_disk_absorber.toml", "absorber.inertia"),
+    ("mechanism", "mechanism/crank_press.toml", "motion.start_speed"),
+    ("acceleration", "acceleration/lecture.toml", "vehicle.mass"),
+]
+
+
+def study_rates(folder: Path) -> None:
+    """Issue 31's table: the marginal samples per second of a study of every
+    problem (the study's own sampling_seconds at two sizes, so set-up is left out),
+    and its ratio to braking's kernel in the same run. A kernel problem is measured
+    at 10⁵ and 10⁶ samples, one that runs sample by sample at 8 and 24 (2 jobs)."""
+    import tomllib
+
+    print("study rates (marginal samples/s between two sizes; one key ±5 %, default results):")
+    base_rate = None
+    for name, case, key in RATE_SCENES:
+        data = tomllib.loads((ROOT / "cases" / case).read_text("utf-8"))
+        for extra in ("expect", "study"):
+            data.pop(extra, None)
+        how, seconds = _study_rate(folder, name, data, key, 8)  # which way, before hours
+        sizes = (100_000, 1_000_000) if "kernel" in how else (8, 24)
+        timings = [
+            (n, seconds if n == 8 else _study_rate(folder, name, data, key, n)[1]) for n in sizes
+        ]
+        (n1, t1), (n2, t2) = timings[0], timings[-1]
+        rate = (n2 - n1) / max(t2 - t1, 1e-9)
+        base_rate = rate if base_rate is None else base_rate
+        print(f"  {name:16s} {key:28s} {how[:34]:34s} {rate:12.3g}  ({rate / base_rate:.2g})")
+    print("  targets (issue 31): >= 1e5 closed-form and modal keys, >= 2e4 mechanism, acceleration")
+
+
+def _study_rate(
+    folder: Path, name: str, data: dict[str, Any], key: str, samples: int
+) -> tuple[str, float]:
+    """(how, sampling_seconds) of a study of ``data`` drawing ``key`` ±5 %."""
+    import json
+
+    import tomli_w
+
+    node: Any = data
+    for part in key.split("."):
+        node = node[int(part)] if isinstance(node, list) else node[part]
+    study = {"samples": samples, "seed": 1, "inputs": {key: {"nominal": node, "tol": "±5 %"}}}
+    path = folder / "rate.toml"
+    path.write_text(tomli_w.dumps({**data, "study": study}), encoding="utf-8")
+    done = subprocess.run([MDCALC, "study", str(path), "--json", "--jobs", "2"],
+                          capture_output=True, text=True, check=False)  # fmt: skip
+    if done.returncode != 0:
+        raise SystemExit(f"bench: {name}: exit {done.returncode}: {done.stderr[:300]}")
+    document = json.loads(done.stdout)
+    return document["how"], document["sampling_seconds"]
+
+
 def studies(folder: Path) -> None:
     """10⁶ braking samples (the kernel), 10⁴ mine-hoist samples on the pool against a
     LocalCluster of 2 workers, one Sobol study."""
@@ -355,6 +419,7 @@ def main() -> None:
         sweep(folder)
         mine_hoist()
         studies(folder)
+        study_rates(folder)
         growth(folder)
         shutil.rmtree(folder / "cases", ignore_errors=True)
 
