@@ -12,13 +12,14 @@ from __future__ import annotations
 import csv
 import math
 import textwrap
+import tomllib
 from pathlib import Path
 from statistics import NormalDist
 
 import numpy as np
 import pytest
 
-from tests.conftest import MINE_STUDY, run_script, strict_json, walk_finite
+from tests.conftest import CASES, MINE_STUDY, run_script, strict_json, walk_finite
 
 G = 9.80665
 
@@ -550,3 +551,42 @@ def test_a_design_whose_result_does_not_change_is_left_out_and_said():
     almost_never[len(u) - 1] = 1.0  # one change, in the last design
     none = sobol("y", names, problem, almost_never, replicates)
     assert none.first == {} and "changed in 1 of the 16 designs" in none.note
+
+
+def test_samples_run_each_reference_alone_with_the_same_values(tmp_path, monkeypatch):
+    # A sample one by one runs each Methods table's reference alone (no ODE check
+    # rows, no timing repeats): the study's values are the very ones of samples run
+    # with every method, and the Methods rows besides the reference are not run.
+    from mdcalc.runs import sweep
+
+    text = (CASES / "studies" / "resonance_flywheel.toml").read_text(encoding="utf-8")
+    path = study_file(tmp_path, text.split("[expect]")[0].replace("samples = 128", "samples = 16"))
+    alone = run_study(path, jobs=1)
+    monkeypatch.setattr(sweep, "reference_only_fits", lambda *args: False)
+    every = run_study(path, jobs=1)
+    assert not alone.evaluated.vectorized and not alone.evaluated.counts
+    for key in alone.keys:
+        assert list(alone.evaluated.values[key]) == list(every.evaluated.values[key]), key
+
+
+def test_a_result_of_another_method_keeps_every_method_running():
+    # mechanism's Kovylin quantities come from the Kovylin rows: asked for, every
+    # method runs; the reference's own results alone let the others be skipped.
+    from mdcalc import methods
+    from mdcalc.input.casefile import read_case, validate
+    from mdcalc.problems import PROBLEMS
+    from mdcalc.runs.runner import solve_model
+    from mdcalc.runs.sweep import point_results, reference_only_fits
+
+    module = PROBLEMS["mechanism"].load()
+    path = CASES / "mechanism" / "linear_torque.toml"
+    model = validate(module.Case, read_case(path))
+    assert reference_only_fits("mechanism", module, model, ["final_speed"], 10.0)
+    assert not reference_only_fits("mechanism", module, model, ["kovylin_final_speed"], 10.0)
+    assert methods.REFERENCE_ONLY is False  # put back after the tries
+    data = tomllib.loads(path.read_text(encoding="utf-8"))
+    data.pop("expect", None)
+    code, values, _ = point_results((str(path), "mechanism", data, 10.0, True))
+    _, report = solve_model("mechanism", module, model, 10.0)
+    assert code == 0 and values["final_speed"] == report.results()["final_speed"].value
+    assert "kovylin_final_speed" not in values and methods.REFERENCE_ONLY is False

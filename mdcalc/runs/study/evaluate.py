@@ -85,7 +85,10 @@ class KernelChunk:
 class SampleRunner:
     """One sample as a case of its own: (exit code, values of the wanted keys, reason)."""
 
-    def __init__(self, plan: Plan, wanted: Sequence[str], time_limit: float | None) -> None:
+    def __init__(
+        self, plan: Plan, wanted: Sequence[str], time_limit: float | None, alone: bool = False
+    ) -> None:
+        self.alone = alone  # each Methods table's reference alone (reference_only_fits)
         self.problem = plan.problem
         self.path = str(plan.case.path)
         self.scene = plan.scene_data
@@ -99,7 +102,9 @@ class SampleRunner:
         data = copy.deepcopy(self.scene)
         for loc, value in zip(self.locs, row, strict=True):
             set_key(data, loc, float(value))
-        code, values, message = point_results((self.path, self.problem, data, self.time_limit))
+        code, values, message = point_results(
+            (self.path, self.problem, data, self.time_limit, self.alone)
+        )
         return code, [float(values.get(k, math.nan)) for k in self.wanted], message
 
 
@@ -211,7 +216,12 @@ def _by_points(
     evaluated = Evaluated(values, status)
     rows = [tuple(map(float, row)) for row in samples.tolist()]
     done = (lambda: on_done(1)) if on_done is not None else None
-    runner = SampleRunner(plan, wanted, time_limit)
+    from mdcalc.problems import PROBLEMS
+    from mdcalc.runs.sweep import reference_only_fits
+
+    module = PROBLEMS[plan.problem].load()
+    alone = reference_only_fits(plan.problem, module, plan.nominal, wanted, time_limit)
+    runner = SampleRunner(plan, wanted, time_limit, alone)
     for index, (code, got, message) in enumerate(mapper(runner, rows, done, lost)):
         status[index] = code
         if code == EXIT_OK:  # a scene without an answer has no values to count
