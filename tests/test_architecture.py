@@ -7,7 +7,8 @@ The layers, top to bottom (``ls mdcalc/`` shows them)::
     mdcalc (the package's face: no module of it imports it)
     cli          the console entry, the typer app, command bodies, terminal helpers
     runs         one case under its budget, pool, cluster, batch, check, sweep, study
-    problems     the registry, one package or module per problem, problems.common
+    problems     the registry, one package or module per problem
+    domain       data and case sections several problems share (no problem of its own)
     methods | input | output     one layer: the Methods machinery, case files, reports
     core         maths shared by several problems
     errors, _version             the leaves: import nothing of mdcalc
@@ -146,6 +147,7 @@ RANK = {
     "cli": 1,
     "runs": 2,
     "problems": 3,
+    "domain": 3.5,
     "methods": 4,
     "input": 4,
     "output": 4,
@@ -187,12 +189,10 @@ def layer_breaches(graph: dict[str, set[str]]) -> list[str]:
                 found.append(f"{module} -> {target}: {a} -> {b} is not in SIBLING_EDGES")
             elif a == b == "problems":
                 source, goal = problem_of(module), problem_of(target)
-                if source == "common" and goal != "common":
-                    found.append(f"{module} -> {target}: common imports a problem or the registry")
-                elif source not in (None, "common") and goal is None:
+                if source is not None and goal is None:
                     # A problem reaches the others through the registry just as well.
                     found.append(f"{module} -> {target}: a problem imports the registry")
-                elif source not in (None, "common") and goal not in (source, "common"):
+                elif source is not None and goal != source:
                     found.append(f"{module} -> {target}: a problem imports another")
     return found
 
@@ -228,8 +228,9 @@ def test_the_sibling_edges_written_down_are_the_ones_there():
         ("mdcalc.problems.hoist.rope", "mdcalc.problems.mount.kernel", "a problem imports"),
         ("mdcalc.runs.runner", "mdcalc", "mdcalc is above runs"),
         ("mdcalc.problems.mount.solve", "mdcalc.problems", "a problem imports the registry"),
-        ("mdcalc.problems.common.vehicle", "mdcalc.problems.braking", "common imports"),
-        ("mdcalc.problems.common.tables", "mdcalc.problems", "common imports"),
+        ("mdcalc.domain.vehicle", "mdcalc.problems.braking", "problems is above domain"),
+        ("mdcalc.domain.tables", "mdcalc.problems", "problems is above domain"),
+        ("mdcalc.input.model", "mdcalc.domain.vehicle", "domain is above input"),
     ],
 )
 def test_a_breach_of_the_layers_is_found(module, target, says):
@@ -242,7 +243,7 @@ def test_a_breach_of_the_layers_is_found(module, target, says):
 
 def test_a_problem_may_import_what_problems_share():
     graph = import_graph()
-    assert "mdcalc.problems.common.vehicle" in graph["mdcalc.problems.braking"]
+    assert "mdcalc.domain.vehicle" in graph["mdcalc.problems.braking"]
     assert layer_breaches(graph) == []
 
 
@@ -250,12 +251,12 @@ def test_the_tree_shows_the_layers():
     loose = {p.name for p in PACKAGE.iterdir() if p.suffix == ".py"}
     folders = {p.name for p in PACKAGE.iterdir() if (p / "__init__.py").exists()}
     assert loose == LOOSE and len(loose) <= 6
-    assert folders == {"cli", "runs", "problems", "input", "output", "core"}
+    assert folders == {"cli", "runs", "problems", "domain", "input", "output", "core"}
 
 
 #: The __init__.py files that carry a docstring only: a package's __init__ runs on
 #: the import of any module inside it, so a piped scene would pay for every sibling.
-QUIET_INITS = ["cli", "runs", "input", "output", "core", "problems/common"]
+QUIET_INITS = ["cli", "runs", "input", "output", "core", "domain"]
 
 
 @pytest.mark.parametrize("folder", QUIET_INITS)

@@ -33,11 +33,12 @@ charts, with no circle (tests/test_architecture.py checks the whole import graph
 
 What a problem may import: :mod:`mdcalc.methods`, :mod:`mdcalc.input` (the case
 models), :mod:`mdcalc.output` (the Report value, chart data), :mod:`mdcalc.core`
-(shared maths) and :mod:`mdcalc.problems.common` (data and case sections several
+(shared maths) and :mod:`mdcalc.domain` (data and case sections several
 problems share: road adhesion, allowable accelerations, drag); never another
 problem, never :mod:`mdcalc.runs` or :mod:`mdcalc.cli` (the layers of
 tests/test_architecture.py). Maths a second problem needs goes to ``core``; data or
-a case section it needs, to ``common``.
+a case section it needs, to ``domain`` (a layer of its own below the problems: it
+is no problem and has no ``cases/`` folder).
 
 Then add one :class:`ProblemSpec` to ``PROBLEMS`` below: the CLI command, ``check``
 and ``new`` pick it up. The module is imported only when its command runs, so

@@ -23,6 +23,8 @@ from mdcalc.core.motion import Phase, constant_force_phase, ramp_phase
 from mdcalc.core.ode import IMPORTS as ODE_IMPORTS
 from mdcalc.core.units import STANDARD_GRAVITY
 from mdcalc.core.xp import of
+from mdcalc.domain.tables import ROAD_SURFACES
+from mdcalc.domain.vehicle import Drag, SurfaceName, adhesion_of, speed_of
 from mdcalc.input.model import CaseBase, CaseModel, exactly_one, with_values
 from mdcalc.methods import Method, compare
 from mdcalc.output.report import (
@@ -35,8 +37,6 @@ from mdcalc.output.report import (
     Report,
     Table,
 )
-from mdcalc.problems.common.tables import ROAD_SURFACES
-from mdcalc.problems.common.vehicle import Drag, SurfaceName, adhesion_of, speed_of
 
 # ------------------------------------------------------------------------ the case
 

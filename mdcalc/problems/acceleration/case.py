@@ -10,9 +10,9 @@ from typing import Any, Literal
 from pydantic import Field, model_validator
 
 from mdcalc.core.units import STANDARD_GRAVITY, rpm_to_rad_s
+from mdcalc.domain.vehicle import Drag, SurfaceName, adhesion_of, speed_of
 from mdcalc.input.model import CaseBase, CaseModel, FieldError, exactly_one
 from mdcalc.problems.acceleration.engine import EngineCurve
-from mdcalc.problems.common.vehicle import Drag, SurfaceName, adhesion_of, speed_of
 
 RAD_S_TO_RPM = 30.0 / math.pi
 

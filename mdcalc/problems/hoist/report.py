@@ -5,8 +5,8 @@ from __future__ import annotations
 import math
 from typing import Any
 
+from mdcalc.domain.tables import BRAKE_SAFETY_FACTOR
 from mdcalc.output.report import Note, Quantities, Quantity, Report
-from mdcalc.problems.common.tables import BRAKE_SAFETY_FACTOR
 from mdcalc.problems.hoist.solve import Result, _reference
 
 

@@ -5,8 +5,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Literal
 
+from mdcalc.domain.tables import HOIST_ACCELERATION, Range
 from mdcalc.output.report import MethodsTable
-from mdcalc.problems.common.tables import HOIST_ACCELERATION, Range
 from mdcalc.problems.hoist.case import Case
 from mdcalc.problems.hoist.drive import (
     Inertia,

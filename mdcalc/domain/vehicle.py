@@ -7,10 +7,10 @@ from typing import Literal
 from pydantic import Field
 
 from mdcalc.core.units import kmh_to_m_s
+from mdcalc.domain.tables import ROAD_SURFACES
 from mdcalc.input.model import CaseModel
-from mdcalc.problems.common.tables import ROAD_SURFACES
 
-#: Road surfaces of :data:`mdcalc.problems.common.tables.ROAD_SURFACES`.
+#: Road surfaces of :data:`mdcalc.domain.tables.ROAD_SURFACES`.
 SurfaceName = Literal[
     "dry-asphalt", "wet-asphalt", "gravel", "dry-dirt", "wet-dirt", "packed-snow", "icy-road", "ice"
 ]
