@@ -30,13 +30,13 @@ from scipy.optimize import minimize_scalar
 
 from mdcalc.core.chain import (
     Chain,
-    cosine_sum_maximum,
     harmonic_response,
     moment_equations,
     natural_modes,
     static_moments,
     suddenly_applied,
 )
+from mdcalc.core.cosine_sums import cosine_sum_maximum
 
 # Seed 002 (Osipova) hoist at H = 1025 m, reduced to the drum axis.
 SEED_J = (479.15e3, 27.97e3, 156.86e3)  # kg·m²

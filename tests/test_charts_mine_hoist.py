@@ -176,15 +176,17 @@ def test_no_answer_has_no_chart():
 
 def test_charts_are_cheap_and_pure(monkeypatch, capsys):
     """No ODE row, no new modal solution: charts only evaluates the cosine sums."""
-    from mdcalc.core import chain
+    from mdcalc.core import chain, cosine_sums
 
     module, result = _run(HOIST / "stiff_chord.toml")
 
     def refuse(*args, **kwargs):
         raise AssertionError("charts must reuse the solver's modal solution")
 
-    for name in ("natural_modes", "suddenly_applied", "cosine_sum_maximum"):
+    for name in ("natural_modes", "suddenly_applied", "block_modes", "block_step"):
         monkeypatch.setattr(chain, name, refuse)
+    for name in ("cosine_sum_maximum", "maxima"):
+        monkeypatch.setattr(cosine_sums, name, refuse)
     # where it is defined, and where the solver looks it up (the package's ``solve`` is
     # the function, so the module comes from importlib)
     for where in ("ode_rows", "solve"):

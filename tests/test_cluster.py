@@ -65,8 +65,11 @@ def test_a_study_on_a_cluster_is_bit_identical_to_the_pool(tmp_path, cluster):
     assert not clustered.evaluated.counts
 
 
-def test_a_killed_worker_has_its_chunk_run_again(tmp_path, cluster):
+def test_a_killed_worker_has_its_chunk_run_again(tmp_path, cluster, monkeypatch):
+    from mdcalc.problems import PROBLEMS
     from mdcalc.runs.cluster import DaskMapper, PoolMapper
+
+    monkeypatch.setattr(PROBLEMS["mine-hoist"].load(), "sweep", None)  # one by one
 
     path = study_path(tmp_path, 300)
     reference = run_on(path, PoolMapper(1))
@@ -99,6 +102,60 @@ def test_a_vectorized_study_on_a_cluster_is_bit_identical(tmp_path, cluster, mon
     there = run_on(path, DaskMapper(cluster, "test cluster"))
     assert here.evaluated.vectorized and there.evaluated.vectorized
     same(here, there)
+
+
+def test_kernel_blocks_of_a_modal_problem_run_on_the_cluster_bit_identical(
+    tmp_path, cluster, monkeypatch
+):
+    # The mine-hoist kernel (modes, maxima in time) in blocks of 997 samples on the
+    # workers: the values of the study run in this process, bit for bit.
+    import importlib
+
+    from mdcalc.runs.cluster import DaskMapper, PoolMapper
+
+    evaluate = importlib.import_module("mdcalc.runs.study.evaluate")
+    monkeypatch.setattr(evaluate, "KERNEL_CHUNK", 997)
+    path = study_path(tmp_path, 6000)
+    here = run_on(path, PoolMapper(1))
+    there = run_on(path, DaskMapper(cluster, "test cluster"))
+    assert here.evaluated.vectorized and there.evaluated.vectorized
+    assert there.how == "vectorized kernel, blocks on test cluster"
+    same(here, there)
+    assert not there.evaluated.counts
+
+
+def test_a_kernel_block_lost_for_good_counts_its_samples_as_failed(tmp_path, monkeypatch):
+    # A block whose worker died past the retries: its samples fail with the reason,
+    # the other blocks keep their values.
+    import importlib
+
+    from mdcalc.runs.cluster import PoolMapper
+
+    evaluate = importlib.import_module("mdcalc.runs.study.evaluate")
+    monkeypatch.setattr(evaluate, "KERNEL_CHUNK", 50)
+    path = study_path(tmp_path, 200)
+    whole = run_on(path, PoolMapper(1))
+
+    class LosesTheSecond:
+        description = "a cluster that loses a block"
+
+        def __call__(self, func, items, on_done=None, on_error=None):
+            for index, item in enumerate(items):
+                if index == 1:
+                    yield on_error(item, RuntimeError("worker died 3 times"))
+                else:
+                    yield func(item)
+
+    lossy = run_on(path, LosesTheSecond())
+    assert lossy.evaluated.counts == {"internal error": 50}
+    assert lossy.evaluated.reasons["internal error"] == [
+        "samples 50 to 99: lost on the cluster: RuntimeError: worker died 3 times"
+    ]
+    assert list(lossy.evaluated.status[50:100]) == [70] * 50
+    assert np.isnan(lossy.evaluated.values["mu23_first_swing"][50:100]).all()
+    keep = np.r_[0:50, 100:200]
+    for key in whole.keys:
+        assert np.array_equal(lossy.evaluated.values[key][keep], whole.evaluated.values[key][keep])
 
 
 def test_the_command_line_takes_local_n_and_the_environment(tmp_path):

@@ -283,7 +283,7 @@ def _both_paths(path: Path, varies: list[str], monkeypatch) -> tuple[Any, Any, l
     sweep = plan(path, [parse_vary(v) for v in varies])
     fast = evaluate(sweep, keys, 1)
     with monkeypatch.context() as patch:
-        patch.setattr(PROBLEMS["braking"].load(), "sweep", lambda case, grid: None)
+        patch.setattr(PROBLEMS["braking"].load(), "sweep", lambda case, grid, wanted=None: None)
         slow = evaluate(sweep, keys, 1)
     assert fast.vectorized and not slow.vectorized
     return fast, slow, keys
@@ -452,7 +452,7 @@ def test_point_by_point_sweep_equals_single_runs(cli, tmp_path, monkeypatch):
     # mount has a kernel now; without it the grid runs point by point in the pool.
     from mdcalc.problems import PROBLEMS
 
-    monkeypatch.setattr(PROBLEMS["mount"].load(), "sweep", lambda case, grid: None)
+    monkeypatch.setattr(PROBLEMS["mount"].load(), "sweep", lambda case, grid, wanted=None: None)
     source = CASES / "mount" / "example_9_1.toml"
     out = tmp_path / "mount.json"
     keys = ["natural_frequency", "amplitude_1", "amplitude_2", "peak_displacement"]

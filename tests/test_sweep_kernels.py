@@ -87,11 +87,12 @@ def test_kernel_equals_point_by_point(name: str, path: Path, monkeypatch):
         pytest.skip("the scene needs the point-by-point path (an ODE or a no-answer point)")
     fast = evaluate(sweep, [], 1)
     with monkeypatch.context() as patch:
-        patch.setattr(module, "sweep", lambda case, grid: None)
+        patch.setattr(module, "sweep", lambda case, grid, wanted=None: None)
         slow = evaluate(sweep, [], 1)
     if not fast.vectorized:
         pytest.skip("the scene needs the point-by-point path (an ODE)")
     assert not slow.vectorized
+    assert list(fast.status) == list(slow.status)  # declined points solved alone
     for key in fast.keys:
         np.testing.assert_allclose(
             fast.columns[key], slow.columns[key], rtol=1e-11, atol=0, err_msg=key

@@ -1,7 +1,9 @@
 """Linear torsional chains: J₁ - c₁ - J₂ - c₂ - ... - Jₙ, free at both ends.
 
 Shared by the problems that model a drive as inertias on springs (``mine-hoist``,
-later ``variator`` and ``resonance``). Everything is numpy; no scipy.
+``variator`` and ``resonance``). Everything is numpy; no scipy. The modal work runs
+on a block of chains at once (``block_modes``, ``block_step``: a study's samples), a
+single chain being a block of one, so that both take the same arithmetic.
 
 * :class:`Chain` -- inertias [kg·m²] and the stiffnesses between neighbours
   [N·m/rad]; its mass and stiffness matrices.
@@ -15,9 +17,7 @@ later ``variator`` and ``resonance``). Everything is numpy; no scipy.
   constant torques applied at t = 0 to a chain at rest with unloaded springs:
   M(t) = R - Σⱼ qⱼ·uⱼ·cos(βⱼt) = R + Σⱼ Bⱼ·cos(βⱼt), with R the moments of uniform
   acceleration. Its undamped supremum is R + Σ|Bⱼ| per spring.
-* :func:`cosine_sum_maximum` -- the largest value of R + Σ B·cos(βt) over a time
-  window, found by sampling at 16 points per period of the fastest resolved mode and
-  golden-section refinement of every candidate.
+  Their largest values over a time window: :mod:`.cosine_sums`.
 * :func:`moment_equations` -- the ODE of the spring moments, M'' = -A·M + f (seed
   002 (6)), for reference runs.
 * :func:`harmonic_response` -- the steady response to harmonic torques with viscous
@@ -29,6 +29,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -79,71 +80,22 @@ class Chain:
         j, c = self.inertias, self.stiffnesses
         return tuple(c[k] * (1.0 / j[k] + 1.0 / j[k + 1]) for k in range(len(c)))
 
-    def holzer(self, eigenvalue: float) -> tuple[list[float], list[float], float]:
-        """Holzer's table at λ = ω² from the first mass: the angles θ (θ₁ = 1), the
-        spring moments cₖ(θₖ - θₖ₊₁) and the residual torque λ·Σ Jₖθₖ past the last
-        mass (zero at a natural frequency)."""
-        theta = [1.0]
-        moments: list[float] = []
-        torque = eigenvalue * self.inertias[0]
-        for k, c in enumerate(self.stiffnesses):
-            moments.append(torque)  # spring k carries the inertia torques left of it
-            theta.append(theta[-1] - torque / c)
-            torque += eigenvalue * self.inertias[k + 1] * theta[-1]
-        return theta, moments, torque
-
-    def _misfit(self, eigenvalue: float, theta: list[float]) -> float:
-        """max |(K - λJ)·θ|, scaled by the largest term that enters it."""
-        worst, size = 0.0, 0.0
-        for k in range(self.size):
-            terms = [-eigenvalue * self.inertias[k] * theta[k]]
-            if k > 0:
-                terms.append(self.stiffnesses[k - 1] * (theta[k] - theta[k - 1]))
-            if k + 1 < self.size:
-                terms.append(self.stiffnesses[k] * (theta[k] - theta[k + 1]))
-            worst = max(worst, abs(math.fsum(terms)))
-            size = max(size, *(abs(t) for t in terms))
-        return worst / size if size > 0.0 and math.isfinite(size) else math.inf
-
-    def mode_shape(self, eigenvalue: float) -> tuple[list[float], list[float]]:
-        """Angles θ (largest |θ| = 1) and spring moments of the mode at λ.
-
-        Holzer's table run from both ends and joined at the mass that moves most:
-        run into a part of the chain that hardly moves, a table sums inertia torques
-        that cancel (a drum and a light sheave swinging against each other leave the
-        next spring almost unloaded), while run out of it from the far end it does not.
-        """
-        n = self.size
-        left, left_moments, _ = self.holzer(eigenvalue)
-        right, right_moments = [1.0], []
-        torque = -eigenvalue * self.inertias[-1]
-        for k in range(n - 2, -1, -1):
-            right_moments.append(torque)  # spring k carries the inertia torques right of it
-            right.append(right[-1] + torque / self.stiffnesses[k])
-            torque -= eigenvalue * self.inertias[k] * right[-1]
-        right.reverse()
-        right_moments.reverse()
-        # Join where the joined shape fits (K - λJ)·θ = 0 best: each table is accurate
-        # where it has not yet run into a part of the chain that hardly moves.
-        best: tuple[float, list[float], list[float]] | None = None
-        for join in range(n):
-            if right[join] == 0.0 or not math.isfinite(left[join]):
-                continue
-            scale = left[join] / right[join]
-            shape = left[: join + 1] + [scale * v for v in right[join + 1 :]]
-            springs = left_moments[:join] + [scale * m for m in right_moments[join:]]
-            misfit = self._misfit(eigenvalue, shape)
-            if best is None or misfit < best[0]:
-                best = (misfit, shape, springs)
-        if best is None:
-            theta, moments = left, left_moments
-        else:
-            _, theta, moments = best
-        norm = max(abs(v) for v in theta)
-        return [v / norm for v in theta], [m / norm for m in moments]
+    def arrays(self) -> tuple[np.ndarray, np.ndarray]:
+        """The chain as a block of one: inertias (1, n) and stiffnesses (1, n - 1)."""
+        return (
+            np.array([self.inertias], dtype=float),
+            np.array([self.stiffnesses], dtype=float),
+        )
 
 
 # ------------------------------------------------------------------ natural modes
+#
+# Every function below works on a block of chains at once: inertias J of shape
+# (B, n), stiffnesses c of shape (B, n - 1). A single scene is a block of one, so a
+# study's samples and a single scene run the same arithmetic. Sums over masses and
+# modes are written as loops in index order (never np.sum over a short axis, whose
+# order of addition depends on the array's layout), so a row's result does not
+# depend on the block it is in.
 
 
 @dataclass(frozen=True)
@@ -161,81 +113,222 @@ class Modes:
         return tuple(math.sqrt(v) for v in self.eigenvalues)
 
 
+@dataclass(frozen=True)
+class ModesBlock:
+    """:class:`Modes` of a block of chains: a leading axis of length B on each."""
+
+    eigenvalues: np.ndarray  # (B, n-1), ascending
+    shapes: np.ndarray  # (B, n, n-1)
+    moments: np.ndarray  # (B, n-1, n-1)
+    first_guess: np.ndarray  # (B, n-1)
+
+    def row(self, index: int) -> Modes:
+        return Modes(
+            tuple(self.eigenvalues[index].tolist()),
+            self.shapes[index],
+            self.moments[index],
+            tuple(self.first_guess[index].tolist()),
+        )
+
+
 def natural_modes(chain: Chain) -> Modes:
     """Elastic natural frequencies and mode shapes of a free-free chain."""
-    guesses = _symmetric_eigenvalues(chain)
-    if len(guesses) > 1:
-        # The lowest from the product of all, Πc·ΣJ/ΠJ, over the others: an
-        # eigensolver gives it with an absolute error near eps·λ_max, so it may even
-        # come out 0 or negative when λ_max/λ_min passes 1/eps.
-        log_product = (
-            sum(math.log(c) for c in chain.stiffnesses)
-            + math.log(chain.total_inertia)
-            - sum(math.log(j) for j in chain.inertias)
-        )
-        guesses[0] = math.exp(log_product - float(np.sum(np.log(guesses[1:]))))
-    polished = [
-        _polish(chain, guess, guesses, index) for index, guess in enumerate(guesses.tolist())
-    ]
-    shapes = np.empty((chain.size, chain.size - 1))
-    moments = np.empty((chain.size - 1, chain.size - 1))
-    for j, value in enumerate(polished):
-        theta, spring = chain.mode_shape(value)
-        shapes[:, j] = theta
-        moments[:, j] = spring
-    return Modes(tuple(polished), shapes, moments, tuple(guesses.tolist()))
+    return block_modes(*chain.arrays()).row(0)
 
 
-def _symmetric_eigenvalues(chain: Chain) -> np.ndarray:
-    """Eigenvalues of the spring-moment form C^½·T·J⁻¹·Tᵀ·C^½, ascending; the
-    rigid-body mode does not appear in it."""
-    difference = chain.difference_matrix()
-    inverse_mass = np.diag(1.0 / np.array(chain.inertias))
-    root_c = np.sqrt(np.array(chain.stiffnesses))
-    symmetric = root_c[:, None] * (difference @ inverse_mass @ difference.T) * root_c[None, :]
+def block_modes(inertias: np.ndarray, stiffnesses: np.ndarray) -> ModesBlock:
+    """Elastic natural frequencies and mode shapes of a block of chains.
+
+    The eigenvalues of the symmetric form are a first guess; the lowest is then taken
+    from the product of all, Πc·ΣJ/ΠJ, over the others (an eigensolver gives it with
+    an absolute error near eps·λ_max, so it may even come out 0 or negative when
+    λ_max/λ_min passes 1/eps); each is then polished as a root of the Holzer residual.
+    """
+    j = np.asarray(inertias, dtype=float)
+    c = np.asarray(stiffnesses, dtype=float)
+    guesses = _symmetric_eigenvalues(j, c)
+    if guesses.shape[1] > 1:
+        log_product = _total(np.log(c)) + np.log(_total(j)) - _total(np.log(j))
+        guesses[:, 0] = np.exp(log_product - _total(np.log(guesses[:, 1:])))
+    polished = _polish(j, c, guesses)
+    shapes, moments = _mode_shapes(j, c, polished)
+    return ModesBlock(polished, shapes, moments, guesses)
+
+
+def _total(x: np.ndarray) -> np.ndarray:
+    """Σ over the last axis, added in index order."""
+    total = x[..., 0].copy()
+    for k in range(1, x.shape[-1]):
+        total = total + x[..., k]
+    return total
+
+
+def _symmetric_eigenvalues(j: np.ndarray, c: np.ndarray) -> np.ndarray:
+    """Eigenvalues of the spring-moment form C^½·T·J⁻¹·Tᵀ·C^½ (tridiagonal), ascending,
+    per chain; the rigid-body mode does not appear in it."""
+    size, springs = c.shape
+    inverse = 1.0 / j
+    root_c = np.sqrt(c)
+    symmetric = np.zeros((size, springs, springs))
+    for k in range(springs):
+        symmetric[:, k, k] = c[:, k] * (inverse[:, k] + inverse[:, k + 1])
+        if k + 1 < springs:
+            symmetric[:, k, k + 1] = symmetric[:, k + 1, k] = (
+                -root_c[:, k] * inverse[:, k + 1] * root_c[:, k + 1]
+            )
     return np.linalg.eigvalsh(symmetric)
 
 
-def _polish(chain: Chain, guess: float, guesses: np.ndarray, index: int) -> float:
-    """The root of the Holzer residual next to ``guess``, to full relative precision.
+def holzer_residual(j: np.ndarray, c: np.ndarray, eigenvalue: np.ndarray) -> np.ndarray:
+    """Holzer's table at λ = ω² from the first mass (θ₁ = 1): the torque λ·Σ Jₖθₖ
+    left past the last mass, zero at a natural frequency. ``eigenvalue`` (B, m): m
+    trial values per chain."""
+    theta = np.ones_like(eigenvalue)
+    torque = eigenvalue * j[:, :1]
+    for k in range(c.shape[1]):
+        theta = theta - torque / c[:, k, None]
+        torque = torque + eigenvalue * j[:, k + 1, None] * theta
+    return torque
+
+
+def _polish(j: np.ndarray, c: np.ndarray, guesses: np.ndarray) -> np.ndarray:
+    """The root of the Holzer residual next to each guess, to full relative precision.
 
     The residual divided by λ is a polynomial with the n - 1 elastic eigenvalues as
     simple roots, so it changes sign at each; the bracket grows from the
-    eigensolver's error bound until it does, staying short of the neighbours.
+    eigensolver's error bound until it does, staying short of the neighbours. A
+    guess whose bracket never changes sign (roots too close to separate) is kept.
     """
+    with np.errstate(all="ignore"):  # brackets past overflow are judged, not raised
 
-    def residual(value: float) -> float:
-        return chain.holzer(value)[2] / value
+        def residual(value: np.ndarray) -> np.ndarray:
+            return holzer_residual(j, c, value) / value
 
-    eps = np.finfo(float).eps
-    width = 64.0 * eps * float(guesses[-1]) + 4.0 * eps * guess
-    low_limit = 0.5 * (guesses[index - 1] + guess) if index > 0 else 0.5 * guess
-    high_limit = 0.5 * (guess + guesses[index + 1]) if index + 1 < len(guesses) else 2.0 * guess
-    for _ in range(60):
-        low, high = max(guess - width, low_limit), min(guess + width, high_limit)
-        if low > 0.0 and residual(low) * residual(high) <= 0.0:
-            return _bisect(residual, low, high)
-        if low <= low_limit and high >= high_limit:
-            break
-        width *= 4.0
-    return guess  # no sign change found (roots too close to separate): keep the guess
+        eps = np.finfo(float).eps
+        g = guesses
+        width = 64.0 * eps * g[:, -1:] + 4.0 * eps * g
+        low_limit = 0.5 * g
+        high_limit = 2.0 * g
+        low_limit[:, 1:] = 0.5 * (g[:, :-1] + g[:, 1:])
+        high_limit[:, :-1] = 0.5 * (g[:, :-1] + g[:, 1:])
+        low, high = g.copy(), g.copy()
+        searching = np.ones(g.shape, dtype=bool)
+        bracketed = np.zeros(g.shape, dtype=bool)
+        for _ in range(60):
+            a = np.maximum(g - width, low_limit)
+            b = np.minimum(g + width, high_limit)
+            found = searching & (a > 0.0) & (residual(a) * residual(b) <= 0.0)
+            low = np.where(found, a, low)
+            high = np.where(found, b, high)
+            bracketed |= found
+            searching &= ~found & ~((a <= low_limit) & (b >= high_limit))
+            if not searching.any():
+                break
+            width = width * 4.0
+        return np.where(bracketed, _bisect(residual, low, high, bracketed), g)
 
 
-def _bisect(function: object, low: float, high: float) -> float:
-    f = function  # a callable; typed loosely to keep the loop lean
-    f_low = f(low)  # type: ignore[operator]
+def _bisect(function: Any, low: np.ndarray, high: np.ndarray, active: np.ndarray) -> np.ndarray:
+    """Bisection of each bracket [low, high] where ``active``, to the last bit."""
+    f_low = function(low)
+    root = np.zeros_like(low)
+    exact = np.zeros(low.shape, dtype=bool)
+    running = active.copy()
     for _ in range(200):
         middle = 0.5 * (low + high)
-        if middle in (low, high):
+        running &= (middle != low) & (middle != high)
+        if not running.any():
             break
-        f_middle = f(middle)  # type: ignore[operator]
-        if f_middle == 0.0:
-            return middle
-        if (f_middle < 0.0) == (f_low < 0.0):
-            low, f_low = middle, f_middle
-        else:
-            high = middle
-    return 0.5 * (low + high)
+        f_middle = function(middle)
+        hit = running & (f_middle == 0.0)
+        root = np.where(hit, middle, root)
+        exact |= hit
+        running &= ~hit
+        left = (f_middle < 0.0) == (f_low < 0.0)
+        low = np.where(running & left, middle, low)
+        f_low = np.where(running & left, f_middle, f_low)
+        high = np.where(running & ~left, middle, high)
+    return np.where(exact, root, 0.5 * (low + high))
+
+
+def _mode_shapes(
+    j: np.ndarray, c: np.ndarray, eigenvalues: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """Angles θ (largest |θ| = 1) and spring moments of every mode of every chain.
+
+    Holzer's table run from both ends and joined where the joined shape fits
+    (K - λJ)·θ = 0 best: run into a part of the chain that hardly moves, a table sums
+    inertia torques that cancel (a drum and a light sheave swinging against each
+    other leave the next spring almost unloaded), while run out of it from the far
+    end it does not.
+    """
+    n = j.shape[1]
+    lam = eigenvalues
+    with np.errstate(all="ignore"):
+        left = [np.ones_like(lam)]
+        left_moments: list[np.ndarray] = []
+        torque = lam * j[:, :1]
+        for k in range(n - 1):
+            left_moments.append(torque)  # spring k carries the inertia torques left of it
+            left.append(left[-1] - torque / c[:, k, None])
+            torque = torque + lam * j[:, k + 1, None] * left[-1]
+        right = [np.ones_like(lam)]
+        right_moments: list[np.ndarray] = []
+        torque = -lam * j[:, n - 1 : n]
+        for k in range(n - 2, -1, -1):
+            right_moments.append(torque)  # spring k carries the inertia torques right of it
+            right.append(right[-1] + torque / c[:, k, None])
+            torque = torque - lam * j[:, k, None] * right[-1]
+        right.reverse()
+        right_moments.reverse()
+        # The join with the least misfit; a join that cannot be made ranks last, and
+        # an infinite misfit just before it (the first such join wins a tie).
+        best = np.full(lam.shape, np.inf)
+        where = np.full(lam.shape, -1)
+        for join in range(n):
+            usable = (right[join] != 0.0) & np.isfinite(left[join])
+            scale = left[join] / right[join]
+            shape = left[: join + 1] + [scale * v for v in right[join + 1 :]]
+            misfit = _misfit(j, c, lam, shape)
+            rank = np.where(usable, np.minimum(misfit, np.finfo(float).max), np.inf)
+            better = rank < best
+            best = np.where(better, rank, best)
+            where = np.where(better, join, where)
+        theta = np.stack(left, axis=1)
+        springs = np.stack(left_moments, axis=1) if n > 1 else np.zeros(lam.shape)
+        for join in range(n):
+            chosen = (where == join)[:, None, :]
+            scale = left[join] / right[join]
+            joined = np.stack(left[: join + 1] + [scale * v for v in right[join + 1 :]], axis=1)
+            moments = np.stack(
+                left_moments[:join] + [scale * m for m in right_moments[join:]], axis=1
+            )
+            theta = np.where(chosen, joined, theta)
+            springs = np.where(chosen, moments, springs)
+        norm = np.abs(theta[:, 0, :])
+        for k in range(1, n):
+            norm = np.maximum(norm, np.abs(theta[:, k, :]))
+        return theta / norm[:, None, :], springs / norm[:, None, :]
+
+
+def _misfit(j: np.ndarray, c: np.ndarray, lam: np.ndarray, theta: list[np.ndarray]) -> np.ndarray:
+    """max |(K - λJ)·θ| over the masses, scaled by the largest term that enters it."""
+    n = len(theta)
+    worst = np.zeros(lam.shape)
+    size = np.zeros(lam.shape)
+    for k in range(n):
+        terms = [-lam * j[:, k, None] * theta[k]]
+        if k > 0:
+            terms.append(c[:, k - 1, None] * (theta[k] - theta[k - 1]))
+        if k + 1 < n:
+            terms.append(c[:, k, None] * (theta[k] - theta[k + 1]))
+        total = terms[0]
+        for term in terms[1:]:
+            total = total + term
+        worst = np.maximum(worst, np.abs(total))
+        for term in terms:
+            size = np.maximum(size, np.abs(term))
+    return np.where((size > 0.0) & np.isfinite(size), worst / size, np.inf)
 
 
 # ---------------------------------------------------- suddenly applied torques
@@ -260,151 +353,107 @@ class StepResponse:
         """The least upper bound of Mₖ(t) over all time, Rₖ + Σⱼ|Bₖⱼ| [N·m]: approached
         when the frequencies are incommensurate, since then every phase combination
         comes back arbitrarily close."""
-        return self.static[spring] + float(np.sum(np.abs(self.amplitudes[spring])))
+        return float(supremum(np.array([self.static]), self.amplitudes[None])[0, spring])
+
+
+@dataclass(frozen=True)
+class StepBlock:
+    """:class:`StepResponse` of a block of chains."""
+
+    static: np.ndarray  # (B, n-1): Rₖ [N·m]
+    amplitudes: np.ndarray  # (B, n-1, n-1): Bₖⱼ [N·m]
+    acceleration: np.ndarray  # (B,): ε [rad/s²]
+    eigenvalues: np.ndarray  # (B, n-1): λⱼ of the modes [1/s²]
+    consistent: np.ndarray  # (B,) bool: R + ΣB = 0 at t = 0 within 1e-9 of the scale
+
+    def row(self, index: int) -> StepResponse:
+        """One chain's response; raises ArithmeticError where the constant parts and
+        the modes do not add up to M(0) = 0."""
+        if not self.consistent[index]:
+            misfit = float(np.max(np.abs(self.static[index] + _total(self.amplitudes[index]))))
+            raise ArithmeticError(
+                f"modal solution inconsistent: M(0) = {misfit:.3g} N·m, not 0 "
+                "(mode shapes lost precision on this chain)"
+            )
+        return StepResponse(
+            tuple(np.sqrt(self.eigenvalues[index]).tolist()),
+            tuple(self.static[index].tolist()),
+            self.amplitudes[index],
+            float(self.acceleration[index]),
+        )
+
+
+def supremum(static: np.ndarray, amplitudes: np.ndarray) -> np.ndarray:
+    """Rₖ + Σⱼ|Bₖⱼ| of each spring of each chain (B, n-1) [N·m]."""
+    return static + _total(np.abs(amplitudes))
 
 
 def static_moments(chain: Chain, torques: Sequence[float]) -> tuple[tuple[float, ...], float]:
-    """Spring moments when the chain accelerates as a rigid body under ``torques``:
-    spring k carries the torques left of it less the inertia torque of the masses
-    left of it, Rₖ = Σᵢ≤ₖ(Mᵢ - Jᵢ·ε), ε = ΣM/ΣJ (seed 002 (11)-(12))."""
-    total = chain.total_inertia
-    accel = math.fsum(torques) / total
-    static = []
-    for k in range(chain.size - 1):
-        # Rₖ = [ΣM(left)·ΣJ(right) - ΣM(right)·ΣJ(left)]/ΣJ: no difference of near
-        # equals when the torques push apart (drive on the left, load on the right).
-        left_torque, right_torque = math.fsum(torques[: k + 1]), math.fsum(torques[k + 1 :])
-        left_inertia = math.fsum(chain.inertias[: k + 1])
-        right_inertia = math.fsum(chain.inertias[k + 1 :])
-        static.append((left_torque * right_inertia - right_torque * left_inertia) / total)
-    return tuple(static), accel
+    """Spring moments when the chain accelerates as a rigid body under ``torques``
+    (see :func:`block_static_moments`)."""
+    j, _ = chain.arrays()
+    static, accel = block_static_moments(j, np.array([torques], dtype=float))
+    return tuple(static[0].tolist()), float(accel[0])
+
+
+def block_static_moments(j: np.ndarray, torques: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Spring k carries the torques left of it less the inertia torque of the masses
+    left of it, Rₖ = Σᵢ≤ₖ(Mᵢ - Jᵢ·ε), ε = ΣM/ΣJ (seed 002 (11)-(12)); written as
+    Rₖ = [ΣM(left)·ΣJ(right) - ΣM(right)·ΣJ(left)]/ΣJ, so that no difference of near
+    equals appears when the torques push apart (drive on the left, load on the right).
+    """
+    n = j.shape[1]
+    total = _total(j)
+    accel = _total(torques) / total
+    static = np.empty((j.shape[0], n - 1))
+    for k in range(n - 1):
+        left_torque, right_torque = _total(torques[:, : k + 1]), _total(torques[:, k + 1 :])
+        left_inertia, right_inertia = _total(j[:, : k + 1]), _total(j[:, k + 1 :])
+        static[:, k] = (left_torque * right_inertia - right_torque * left_inertia) / total
+    return static, accel
 
 
 def suddenly_applied(chain: Chain, torques: Sequence[float], modes: Modes) -> StepResponse:
     """The modal solution for constant ``torques`` [N·m] (one per mass, positive in
-    the sense of rotation) applied at t = 0 to the chain at rest with unloaded springs.
+    the sense of rotation) applied at t = 0 to the chain at rest with unloaded springs
+    (see :func:`block_step`). Raises ArithmeticError where the constant parts and the
+    modes do not add up to M(0) = 0."""
+    if len(torques) != chain.size:
+        raise ValueError(f"{len(torques)} torques for {chain.size} masses")
+    j, _ = chain.arrays()
+    block = ModesBlock(
+        np.array([modes.eigenvalues]),
+        modes.shapes[None],
+        modes.moments[None],
+        np.array([modes.first_guess]),
+    )
+    return block_step(j, np.array([torques], dtype=float), block).row(0)
+
+
+def block_step(j: np.ndarray, torques: np.ndarray, modes: ModesBlock) -> StepBlock:
+    """The modal solution of constant torques applied at t = 0 to chains at rest.
 
     Mode j's coordinate obeys q'' + βⱼ²·q = θⱼᵀ·M/(θⱼᵀ·J·θⱼ) from rest, so
     q(t) = (θⱼᵀM)/(λⱼ·θⱼᵀJθⱼ)·(1 - cos βⱼt), and the spring moments of mode j are its
     Holzer moments times q. The constant parts add up to R: checked, not assumed.
     """
-    if len(torques) != chain.size:
-        raise ValueError(f"{len(torques)} torques for {chain.size} masses")
-    static, accel = static_moments(chain, torques)
-    inertias = np.array(chain.inertias)
-    load = np.array(torques, dtype=float)
-    amplitudes = np.empty((chain.size - 1, chain.size - 1))
-    for j, value in enumerate(modes.eigenvalues):
-        theta = modes.shapes[:, j]
-        participation = float(theta @ load) / (value * float(theta @ (inertias * theta)))
-        amplitudes[:, j] = -participation * modes.moments[:, j]
-    scale = max(max(abs(r) for r in static), float(np.max(np.abs(amplitudes))))
-    misfit = np.max(np.abs(np.array(static) + amplitudes.sum(axis=1)))
-    if scale > 0.0 and misfit > 1e-9 * scale:
-        raise ArithmeticError(
-            f"modal solution inconsistent: M(0) = {misfit:.3g} N·m, not 0 "
-            "(mode shapes lost precision on this chain)"
-        )
-    return StepResponse(modes.frequencies, static, amplitudes, accel)
-
-
-# --------------------------------------------------------------- maxima in time
-
-
-@dataclass(frozen=True)
-class Maximum:
-    """The largest value of a cosine sum over a window and where it is."""
-
-    value: float
-    time: float
-    # Modes too fast to sample over the window are taken at their full amplitude:
-    # ``bound`` is then True and the value exceeds the truth by at most ``error``.
-    bound: bool = False
-    error: float = 0.0
-
-
-SAMPLES_PER_PERIOD = 16
-SAMPLE_BUDGET = 1 << 22
-_CHUNK = 1 << 17
-_GOLDEN = (math.sqrt(5.0) - 1.0) / 2.0
-
-
-def cosine_sum_maximum(
-    constant: float,
-    amplitudes: Sequence[float],
-    frequencies: Sequence[float],
-    start: float,
-    end: float,
-    budget: int = SAMPLE_BUDGET,
-) -> Maximum:
-    """max of constant + Σ Bⱼ·cos(βⱼ·t) over start ≤ t ≤ end.
-
-    Sampled at 16 points per period of the fastest mode that fits the budget; every
-    sampled local maximum within the sampling error of the best is refined by golden
-    section on its two neighbouring intervals. Modes faster than the budget allows
-    are added at their amplitude |Bⱼ| (they swing through it within each of their
-    periods), and the result says it is a bound with its error ½·Σ|B·β²|·(π/β_fast)².
-    """
-    pairs = sorted(
-        ((float(b), float(w)) for b, w in zip(amplitudes, frequencies, strict=True) if b != 0.0),
-        key=lambda p: p[1],
-    )
-    span = end - start
-    slow = pairs
-    fast: list[tuple[float, float]] = []
-    if span > 0.0:
-        for count in range(len(pairs), -1, -1):
-            top = pairs[count - 1][1] if count else 0.0
-            if span * top / (2.0 * math.pi) * SAMPLES_PER_PERIOD <= budget:
-                slow, fast = pairs[:count], pairs[count:]
-                break
-    b = np.array([p[0] for p in slow])
-    w = np.array([p[1] for p in slow])
-
-    def value(t: np.ndarray) -> np.ndarray:
-        return constant + np.cos(np.multiply.outer(t, w)) @ b
-
-    top = float(w[-1]) if len(w) else 0.0
-    samples = max(2, int(math.ceil(span * top / (2.0 * math.pi) * SAMPLES_PER_PERIOD)) + 1)
-    step = span / (samples - 1) if samples > 1 else 0.0
-    slack = float(np.sum(np.abs(b) * w * w)) * step * step / 8.0
-    # First pass: the best sample; second pass: candidates within the slack of it.
-    best = -math.inf
-    for first in range(0, samples, _CHUNK):
-        times = start + step * np.arange(first, min(first + _CHUNK, samples))
-        best = max(best, float(np.max(value(times))))
-    candidates: list[np.ndarray] = []
-    for first in range(0, samples, _CHUNK):
-        index = np.arange(max(first - 1, 0), min(first + _CHUNK + 1, samples))
-        values = value(start + step * index)
-        inner = np.ones(len(index), dtype=bool)
-        inner[1:] &= values[1:] >= values[:-1]
-        inner[:-1] &= values[:-1] >= values[1:]
-        own = (index >= first) & (index < first + _CHUNK)
-        pick = index[inner & own & (values >= best - slack)]
-        candidates.append(pick)
-    picked = np.concatenate(candidates) if candidates else np.array([], dtype=int)
-    low = np.clip(start + step * (picked - 1), start, end)
-    high = np.clip(start + step * (picked + 1), start, end)
-    for _ in range(80):  # golden section, all candidates at once
-        a = high - _GOLDEN * (high - low)
-        c = low + _GOLDEN * (high - low)
-        keep_left = value(a) >= value(c)
-        high = np.where(keep_left, c, high)
-        low = np.where(keep_left, low, a)
-    points = np.concatenate([0.5 * (low + high), [start, end]])
-    values = value(points)
-    where = int(np.argmax(values))
-    fast_amplitude = math.fsum(abs(p[0]) for p in fast)
-    if not fast:
-        return Maximum(float(values[where]), float(points[where]))
-    # One fast mode: each of its periods brings it to +|B| while the slow sum moves
-    # by at most ½·Σ|B·β²|·(π/β_fast)². With several, their phases need not line up:
-    # no error is claimed (0), the value is their supremum.
-    error = 0.0
-    if len(fast) == 1 and len(slow) > 0:
-        error = 0.5 * float(np.sum(np.abs(b) * w * w)) * (math.pi / fast[0][1]) ** 2
-    return Maximum(float(values[where]) + fast_amplitude, float(points[where]), True, error)
+    static, accel = block_static_moments(j, torques)
+    shapes = modes.shapes
+    n, m = shapes.shape[1], shapes.shape[2]
+    amplitudes = np.empty((j.shape[0], n - 1, m))
+    for col in range(m):
+        theta = shapes[:, :, col]
+        load = theta[:, 0] * torques[:, 0]
+        inertia = theta[:, 0] * (j[:, 0] * theta[:, 0])
+        for i in range(1, n):
+            load = load + theta[:, i] * torques[:, i]
+            inertia = inertia + theta[:, i] * (j[:, i] * theta[:, i])
+        participation = load / (modes.eigenvalues[:, col] * inertia)
+        amplitudes[:, :, col] = -participation[:, None] * modes.moments[:, :, col]
+    scale = np.maximum(np.max(np.abs(static), axis=1), np.max(np.abs(amplitudes), axis=(1, 2)))
+    misfit = np.max(np.abs(static + _total(amplitudes)), axis=1)
+    consistent = ~((scale > 0.0) & (misfit > 1e-9 * scale))
+    return StepBlock(static, amplitudes, accel, modes.eigenvalues, consistent)
 
 
 # ------------------------------------------------------------- ODE of moments

@@ -110,6 +110,12 @@ def exactly_one(owner: str, **given: object) -> None:
         raise ValueError(f"give exactly one of {keys} in [{owner}] (got {len(named)})")
 
 
+#: The key of a vectorized kernel's answer (a bool array over the block) that marks
+#: the samples it did not compute, such as scenes without an answer: the caller
+#: solves each of them alone, as a single scene, and keeps the kernel's other values.
+DECLINED = "__declined__"
+
+
 def with_values(case: CaseBase, values: dict[str, Any]) -> Any:
     """The case with each key path of ``values`` (``"vehicle.mass"``,
     ``"drive.stage_efficiencies.1"``) set to its value, copied on the way and not

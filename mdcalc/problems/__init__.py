@@ -15,11 +15,16 @@ A problem supplies, for its subcommand to exist:
    built by :func:`mdcalc.methods.compare`).
 4. ``template() -> dict`` -- a starter case that runs as it is (``mdcalc new``).
 5. Optionally ``charts(result) -> list[Chart]`` (``--plot``; data only, no
-   matplotlib) and ``sweep(case, grid) -> dict | None``, the vectorized kernel of
-   ``mdcalc sweep``. A kernel runs the same formulas as ``solve``: closed forms are
-   written once for floats and numpy arrays (:mod:`mdcalc.core.xp`), and
-   :func:`mdcalc.input.model.with_values` puts the grid's arrays into the case so
+   matplotlib) and ``sweep(case, grid, wanted=None) -> dict | None``, the
+   vectorized kernel of ``mdcalc sweep`` and ``mdcalc study`` (``wanted``: the result
+   keys asked for, so that a costly one is left out when not asked). A kernel runs
+   the same formulas as ``solve``: closed forms are written once for floats and
+   numpy arrays (:mod:`mdcalc.core.xp`), modal and other numerical work runs on a
+   block of scenes, the single scene being a block of one (:mod:`mdcalc.core.chain`),
+   and :func:`mdcalc.input.model.with_values` puts the grid's arrays into the case so
    that the problem's own scene code runs on them. Never restate a formula in numpy.
+   A sample the kernel cannot take (no answer there) is marked in the answer's
+   :data:`mdcalc.input.model.DECLINED` mask; the caller solves it alone.
 6. Reference, stiff and extreme cases in ``cases/<name>/`` with ``[expect]`` tables,
    and tests whose expected values are computed independently of the module.
 

@@ -14,6 +14,7 @@ the build-up phase does not, and a tight ODE run is then the reference.
 
 from __future__ import annotations
 
+from collections.abc import Collection
 from dataclasses import dataclass, field, replace
 from typing import Any, Literal
 
@@ -572,7 +573,9 @@ SWEEP_KEYS = {
 }
 
 
-def sweep(case: Case, grid: dict[str, Any]) -> dict[str, Any] | None:
+def sweep(
+    case: Case, grid: dict[str, Any], wanted: Collection[str] | None = None
+) -> dict[str, Any] | None:
     """Every numeric result over a grid of scenes at once (numpy): the case with the
     grid's arrays in it goes through the same :func:`scene_of`, :func:`piecewise_stop`
     and :func:`derived` as one scene. None where the sweep needs the ODE (drag during

@@ -22,6 +22,7 @@ exactly. All closed forms: no numpy, no scipy.
 from __future__ import annotations
 
 import math
+from collections.abc import Collection
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Literal
 
@@ -603,7 +604,9 @@ SWEEP_KEYS = {
 }
 
 
-def sweep(case: Case, grid: dict[str, Any]) -> dict[str, Any] | None:
+def sweep(
+    case: Case, grid: dict[str, Any], wanted: Collection[str] | None = None
+) -> dict[str, Any] | None:
     """Every numeric result of the report over a grid at once (numpy), by the same
     functions the report calls (:func:`pair_numbers`, :func:`gain_numbers`) on the
     case with the grid's arrays in it. Missing (NaN) where the report shows

@@ -23,6 +23,7 @@ from typing import Any
 from mdcalc.core.budget import DEFAULT_SECONDS
 from mdcalc.errors import EXIT_BUG, EXIT_INPUT, EXIT_NO_ANSWER, EXIT_OK, InputError, Problem
 from mdcalc.input.casefile import CaseText, is_integer_field, read_case, unit_of, validate
+from mdcalc.input.model import DECLINED
 from mdcalc.runs.runner import problem_of, solve_model
 
 #: A grid larger than this is refused: 10⁷ points of a vectorized problem take
@@ -355,39 +356,46 @@ def evaluate(
     grid = {key: m.ravel() for key, m in zip(keys, mesh, strict=True)}
     columns: dict[str, Any] = dict(grid)
     kernel = getattr(module, "sweep", None)
-    vectorized = kernel(validate(module.Case, sweep.case), grid) if kernel is not None else None
+    model = validate(module.Case, sweep.case)
+    vectorized = kernel(model, grid, wanted) if kernel is not None else None
+    status = np.zeros(sweep.points, dtype=int)
+    todo = np.arange(sweep.points)
     if vectorized is not None and all(k in vectorized for k in wanted):
         for key in wanted:
             column = np.asarray(vectorized[key], dtype=float)
-            columns[key] = np.broadcast_to(column, (sweep.points,))
+            columns[key] = np.array(np.broadcast_to(column, (sweep.points,)))
+        declined = vectorized.get(DECLINED)
+        if declined is None or not np.any(declined):
+            if on_done is not None:
+                on_done(sweep.points)
+            return Table(keys + wanted, units, columns, status, vectorized=True)
+        todo = np.flatnonzero(np.broadcast_to(declined, (sweep.points,)))
         if on_done is not None:
-            on_done(sweep.points)
-        status = np.zeros(sweep.points, dtype=int)
-        return Table(keys + wanted, units, columns, status, vectorized=True)
+            on_done(sweep.points - len(todo))
+    else:
+        for key in wanted:
+            columns[key] = np.full(sweep.points, np.nan)
 
+    # Point by point: every point, or the points the kernel declined.
     from mdcalc.runs.cluster import PoolMapper
 
     run = mapper if mapper is not None else PoolMapper(jobs)
     path = str(sweep.case.path)
-    model = validate(module.Case, sweep.case)
     alone = reference_only_fits(sweep.problem, module, model, wanted, time_limit)
-    tasks = [
-        (path, sweep.problem, sweep.data_at(point), time_limit, alone) for point in sweep.grid()
-    ]
-    for key in wanted:
-        columns[key] = np.full(sweep.points, np.nan)
-    status = np.zeros(sweep.points, dtype=int)
+    points = list(sweep.grid())
+    tasks = [(path, sweep.problem, sweep.data_at(points[i]), time_limit, alone) for i in todo]
     messages: list[str] = []
     done = (lambda: on_done(1)) if on_done is not None else None
-    for index, (code, values, message) in enumerate(run(point_results, tasks, done, _lost_point)):
+    outcomes = run(point_results, tasks, done, _lost_point)
+    for index, (code, values, message) in zip(todo.tolist(), outcomes, strict=True):
         status[index] = code
         if message:
             at = ", ".join(f"{k} = {grid[k][index]:g}" for k in keys)
             messages.append(f"{path}: error: {at}: {message}")
         for key in wanted:
-            if key in values:
-                columns[key][index] = values[key]
-    return Table(keys + wanted, units, columns, status, messages)
+            columns[key][index] = values.get(key, np.nan)
+    by_kernel = len(todo) < sweep.points
+    return Table(keys + wanted, units, columns, status, messages, vectorized=by_kernel)
 
 
 def _lost_point(task: Any, error: BaseException) -> tuple[int, dict[str, Any], str]:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Collection
 from typing import Any
 
 from mdcalc.input.model import with_values
@@ -32,7 +33,9 @@ SWEEP_KEYS = {
 }
 
 
-def sweep(case: Case, grid: dict[str, Any]) -> dict[str, Any] | None:
+def sweep(
+    case: Case, grid: dict[str, Any], wanted: Collection[str] | None = None
+) -> dict[str, Any] | None:
     """The closed-form results over a grid of scenes at once (numpy): the coupling,
     the suddenly applied torque and the harmonic torques, by the formulas of the
     report; missing (NaN) where the report does not show a value. Without the pulse,

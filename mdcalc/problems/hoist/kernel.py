@@ -3,6 +3,7 @@ formulas over a grid at once."""
 
 from __future__ import annotations
 
+from collections.abc import Collection
 from typing import Any
 
 from mdcalc.input.model import with_values
@@ -29,7 +30,9 @@ SWEEP_KEYS = {
 }
 
 
-def sweep(case: Case, grid: dict[str, Any]) -> dict[str, Any] | None:
+def sweep(
+    case: Case, grid: dict[str, Any], wanted: Collection[str] | None = None
+) -> dict[str, Any] | None:
     """Every numeric result of a rope-less scene over a grid at once (numpy), by the
     formulas of :func:`solve` run on a copy of the case that holds the grid's arrays.
 

@@ -27,6 +27,9 @@ Its files:
 - ``ode_rows.py``: The ODE rows of the Methods table: their evaluation budget and the runs.
 - ``solve.py``: The solver: the Methods, the height sweep, and the result.
 - ``report.py``: The report: the sections a mine-hoist scene needs.
+- ``kernel.py``: The vectorized kernel of ``mdcalc sweep`` and ``mdcalc study``: every
+  numeric result over a block of scenes, by the functions the single scene runs on a
+  block of one.
 - ``charts.py``: The charts of ``--plot``: the dynamic factors against time, and over the
   height sweep (data only).
 """
@@ -35,7 +38,8 @@ from __future__ import annotations
 
 from mdcalc.problems.mine_hoist.case import Case, template
 from mdcalc.problems.mine_hoist.charts import charts
+from mdcalc.problems.mine_hoist.kernel import SWEEP_KEYS, sweep
 from mdcalc.problems.mine_hoist.report import report
 from mdcalc.problems.mine_hoist.solve import solve
 
-__all__ = ["Case", "solve", "report", "template", "charts"]
+__all__ = ["Case", "solve", "report", "template", "charts", "sweep", "SWEEP_KEYS"]

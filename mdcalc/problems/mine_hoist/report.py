@@ -100,7 +100,7 @@ def _chain_section(scene: Scene, dyn: Dynamics) -> Quantities:
     (j1, j2, j3), (c12, c23) = chain.inertias, chain.stiffnesses
     beta12_sq, beta23_sq = chain.partial_eigenvalues()
     beta1, beta2 = dyn.modes.frequencies
-    printed = seed_formula_1(chain)
+    printed = seed_formula_1(*chain.inertias, *chain.stiffnesses)
     return Quantities(
         "Three-mass chain",
         [

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Collection
 from typing import Any
 
 from mdcalc.problems.mount.case import Case
@@ -25,7 +26,9 @@ ALTERNATIVES = [
 ]
 
 
-def sweep(case: Case, grid: dict[str, Any]) -> dict[str, Any] | None:
+def sweep(
+    case: Case, grid: dict[str, Any], wanted: Collection[str] | None = None
+) -> dict[str, Any] | None:
     """Every numeric result over a grid of scenes at once (numpy), by the formulas of
     :func:`solve` and :func:`report`; None for a key it does not know, or where a point
     has no answer (an undamped resonance: point by point says so)."""

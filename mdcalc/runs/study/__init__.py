@@ -111,7 +111,7 @@ def run(
     sampling = time.perf_counter()
     evaluated = evaluate(study, samples, keys, mapper, on_done, time_limit)
     done = time.perf_counter()
-    how = "vectorized kernel" if evaluated.vectorized else f"one by one, {mapper.description}"
+    how = _how(evaluated, mapper)
     result = StudyResult(study, keys, units, samples, evaluated, how, 0.0, time_limit=time_limit)
     result.setup_seconds, result.sampling_seconds = sampling - start, done - sampling
     for key in keys:
@@ -124,9 +124,7 @@ def run(
         on_design = evaluate(study, design, keys, mapper, on_done, time_limit)
         result.sensitivity_runs = len(design)
         result.sensitivity_replicates = replicates
-        result.sensitivity_how = (
-            "vectorized kernel" if on_design.vectorized else f"one by one, {mapper.description}"
-        )
+        result.sensitivity_how = _how(on_design, mapper)
         problem = salib_problem(study)
         for key in keys:
             result.sensitivity.append(
@@ -135,3 +133,15 @@ def run(
         result.sensitivity_seconds = time.perf_counter() - sensitivity
     result.seconds = time.perf_counter() - start
     return result
+
+
+def _how(evaluated: Evaluated, mapper: Mapper) -> str:
+    """How the samples ran: the kernel (here, or in blocks on the pool or a cluster),
+    or one by one."""
+    if not evaluated.vectorized:
+        return f"one by one, {mapper.description}"
+    return (
+        f"vectorized kernel, blocks on {evaluated.shipped}"
+        if evaluated.shipped
+        else ("vectorized kernel")
+    )

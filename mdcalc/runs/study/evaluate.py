@@ -11,8 +11,10 @@ sizes or on where a chunk ran.
 from __future__ import annotations
 
 import copy
+import itertools
 import math
-from collections.abc import Callable, Sequence
+import time
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field
 from itertools import product
 from pathlib import Path
@@ -20,11 +22,15 @@ from typing import Any
 
 from mdcalc.errors import EXIT_BUG, EXIT_INPUT, EXIT_NO_ANSWER, EXIT_OK, InputError
 from mdcalc.input.casefile import CaseText, validate
+from mdcalc.input.model import DECLINED
 from mdcalc.runs.cluster import Mapper, PoolMapper
 from mdcalc.runs.study.spec import Plan
 
 #: Samples per kernel call: 64 Ki samples of a closed form take a few tens of ms.
 KERNEL_CHUNK = 65_536
+#: A kernel block that takes longer than this here sends the other blocks to the
+#: process pool (when it has more than one job).
+HEAVY_BLOCK_SECONDS = 0.2
 #: Inputs up to this many have their 2^k corners validated before the kernel runs.
 MAX_CORNER_INPUTS = 12
 #: Reasons kept per kind of failure (the rest are counted).
@@ -45,6 +51,7 @@ class Evaluated:
     counts: dict[str, int] = field(default_factory=dict)  # kind of failure -> samples
     reasons: dict[str, list[str]] = field(default_factory=dict)  # kind -> first reasons
     vectorized: bool = False
+    shipped: str = ""  # where kernel blocks ran when not in this process (the mapper's)
     note: str = ""
 
 
@@ -71,15 +78,22 @@ class KernelChunk:
         try:
             with warnings.catch_warnings(), np.errstate(all="ignore"):
                 warnings.simplefilter("ignore", RuntimeWarning)
-                out = module.sweep(model, grid)
+                out = module.sweep(model, grid, self.wanted)
         except (ArithmeticError, ValueError):
             return None  # the samples go point by point, where each is judged alone
         if out is None or any(k not in out for k in self.wanted):
             return None
         n = len(block)
-        return {
+        part = {
             k: np.array(np.broadcast_to(np.asarray(out[k], dtype=float), (n,))) for k in self.wanted
         }
+        declined = out.get(DECLINED)
+        part[DECLINED] = (
+            np.zeros(n, dtype=bool)
+            if declined is None
+            else np.array(np.broadcast_to(np.asarray(declined, dtype=bool), (n,)))
+        )
+        return part
 
 
 class SampleRunner:
@@ -108,6 +122,18 @@ class SampleRunner:
         return code, [float(values.get(k, math.nan)) for k in self.wanted], message
 
 
+@dataclass
+class LostBlock:
+    """A block of samples whose kernel run was lost for good (its worker died past
+    the retries): its samples count as failed."""
+
+    reason: str
+
+
+def lost_block(block: Any, error: BaseException) -> LostBlock:
+    return LostBlock(f"lost on the cluster: {type(error).__name__}: {error}")
+
+
 def lost(row: Any, error: BaseException) -> tuple[int, list[float], str]:
     """A sample whose chunk was lost for good (its worker died past the retries)."""
     return EXIT_BUG, [], f"lost on the cluster: {type(error).__name__}: {error}"
@@ -124,7 +150,7 @@ def evaluate(
     """Every row of ``samples`` (one column per input): by the kernel where it can,
     else point by point on ``mapper``."""
     if _kernel_fits(plan, samples, wanted):
-        evaluated = _by_kernel(plan, samples, wanted, mapper, on_done)
+        evaluated = _by_kernel(plan, samples, wanted, mapper, on_done, time_limit)
         if evaluated is not None:
             return evaluated
         note = "the kernel declined some samples: every sample was solved on its own"
@@ -166,37 +192,78 @@ def _by_kernel(
     wanted: Sequence[str],
     mapper: Mapper,
     on_done: Callable[[int], None] | None,
+    time_limit: float | None,
 ) -> Evaluated | None:
     import numpy as np
 
     n = len(samples)
     blocks = [samples[i : i + KERNEL_CHUNK] for i in range(0, n, KERNEL_CHUNK)]
     run = KernelChunk(plan, wanted)
-    # On this machine the kernel runs here: numpy is faster than shipping blocks.
-    parts = (
-        map(run, blocks) if isinstance(mapper, PoolMapper) else mapper(run, blocks, on_error=None)
-    )
+    parts: Iterable[dict[str, Any] | LostBlock | None]
+    if isinstance(mapper, PoolMapper):
+        # The first block runs here. A closed form's kernel is faster here than
+        # shipped; one that takes long a block (a modal solution and its maxima in
+        # time) sends the others to the pool's processes.
+        clock = time.perf_counter()
+        first = run(blocks[0])
+        heavy = time.perf_counter() - clock > HEAVY_BLOCK_SECONDS
+        shipped = mapper.description if heavy and mapper.jobs > 1 and len(blocks) > 1 else ""
+        rest = mapper(run, blocks[1:], on_error=lost_block) if shipped else map(run, blocks[1:])
+        parts = itertools.chain([first], rest)
+    else:  # on a cluster every block goes to the workers, retried where one dies
+        shipped = mapper.description
+        parts = mapper(run, blocks, on_error=lost_block)
     values = {k: np.empty(n) for k in wanted}
+    declined = np.zeros(n, dtype=bool)
+    lost = np.zeros(n, dtype=bool)
+    lost_reasons: list[str] = []
     start = 0
     for block, part in zip(blocks, parts, strict=True):
         if part is None:
             return None
+        if isinstance(part, LostBlock):  # its samples count as failed, with the reason
+            lost[start : start + len(block)] = True
+            for key in wanted:
+                values[key][start : start + len(block)] = np.nan
+            if len(lost_reasons) < KEPT_REASONS:
+                lost_reasons.append(f"samples {start} to {start + len(block) - 1}: {part.reason}")
+            start += len(block)
+            if on_done is not None:
+                on_done(len(block))
+            continue
         for key in wanted:
             values[key][start : start + len(block)] = part[key]
+        declined[start : start + len(block)] = part[DECLINED]
         start += len(block)
         if on_done is not None:
-            on_done(len(block))
+            on_done(len(block) - int(part[DECLINED].sum()))
     status = np.zeros(n, dtype=int)
     infinite = np.zeros(n, dtype=bool)
     for column in values.values():
         infinite |= np.isinf(column)
-    evaluated = Evaluated(values, status, vectorized=True)
+    infinite &= ~declined
+    evaluated = Evaluated(values, status, vectorized=True, shipped=shipped)
     if infinite.any():  # as the point-by-point run would say: no answer there
         status[infinite] = EXIT_NO_ANSWER
         for column in values.values():
             column[infinite] = np.nan
         evaluated.counts[KINDS[EXIT_NO_ANSWER]] = int(infinite.sum())
         evaluated.reasons[KINDS[EXIT_NO_ANSWER]] = ["a result is not a finite number"]
+    if lost.any():
+        status[lost] = EXIT_BUG
+        evaluated.counts[KINDS[EXIT_BUG]] = int(lost.sum())
+        evaluated.reasons[KINDS[EXIT_BUG]] = lost_reasons
+    if declined.any():  # each solved alone, the rest of the block stays as it is
+        where = np.flatnonzero(declined)
+        alone = _by_points(plan, samples[where], wanted, mapper, on_done, time_limit, where)
+        status[where] = alone.status
+        for key in wanted:
+            values[key][where] = alone.values[key]
+        for kind, count in alone.counts.items():
+            evaluated.counts[kind] = evaluated.counts.get(kind, 0) + count
+            kept = evaluated.reasons.setdefault(kind, [])
+            kept.extend(alone.reasons[kind][: KEPT_REASONS - len(kept)])
+        evaluated.note = f"{len(where)} samples the kernel declined were solved one by one"
     return evaluated
 
 
@@ -207,7 +274,10 @@ def _by_points(
     mapper: Mapper,
     on_done: Callable[[int], None] | None,
     time_limit: float | None,
+    indices: Any = None,
 ) -> Evaluated:
+    """Every sample as a case of its own; ``indices`` numbers them in the study
+    (default 0, 1, ...) for the reasons kept."""
     import numpy as np
 
     n = len(samples)
@@ -235,5 +305,6 @@ def _by_points(
                 at = ", ".join(
                     f"{k} = {v:.6g}" for k, v in zip(plan.keys, rows[index], strict=True)
                 )
-                kept.append(f"sample {index} ({at}): {message}")
+                number = int(indices[index]) if indices is not None else index
+                kept.append(f"sample {number} ({at}): {message}")
     return evaluated

@@ -1,0 +1,242 @@
+"""The largest value of cosine sums over a time window, R + Σⱼ Bⱼ·cos(βⱼt): the
+moments of a chain's springs after suddenly applied torques (:mod:`.chain`).
+
+* :func:`cosine_sum_maximum` -- one sum, found by sampling at 16 points per period
+  of the fastest resolved mode and golden-section refinement of every candidate.
+* :func:`maxima` -- the same for a block of rows at once (a study's samples), S sums
+  per row sharing its frequencies and window; a single scene is a block of one.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+
+@dataclass(frozen=True)
+class Maximum:
+    """The largest value of a cosine sum over a window and where it is."""
+
+    value: float
+    time: float
+    # Modes too fast to sample over the window are taken at their full amplitude:
+    # ``bound`` is then True and the value exceeds the truth by at most ``error``.
+    bound: bool = False
+    error: float = 0.0
+
+
+@dataclass(frozen=True)
+class Maxima:
+    """:class:`Maximum` of a block of cosine sums: (B, S) arrays, S sums per row."""
+
+    value: np.ndarray
+    time: np.ndarray
+    bound: np.ndarray
+    error: np.ndarray
+
+    def row(self, index: int, which: int) -> Maximum:
+        """Sum ``which`` of row ``index``."""
+        at = (index, which)
+        return Maximum(
+            float(self.value[at]), float(self.time[at]), bool(self.bound[at]), float(self.error[at])
+        )
+
+
+SAMPLES_PER_PERIOD = 16
+SAMPLE_BUDGET = 1 << 22
+#: Samples evaluated at once (rows × times of a tile).
+_TILE = 1 << 18
+_GOLDEN = (math.sqrt(5.0) - 1.0) / 2.0
+
+
+def cosine_sum_maximum(
+    constant: float,
+    amplitudes: Sequence[float],
+    frequencies: Sequence[float],
+    start: float,
+    end: float,
+    budget: int = SAMPLE_BUDGET,
+) -> Maximum:
+    """max of constant + Σ Bⱼ·cos(βⱼ·t) over start ≤ t ≤ end (see :func:`maxima`)."""
+    return maxima(
+        np.array([[constant]], dtype=float),
+        np.array([amplitudes], dtype=float).reshape(1, 1, -1),
+        np.array([frequencies], dtype=float).reshape(1, -1),
+        np.array([start], dtype=float),
+        np.array([end], dtype=float),
+        budget,
+    ).row(0, 0)
+
+
+def maxima(
+    constant: np.ndarray,
+    amplitudes: np.ndarray,
+    frequencies: np.ndarray,
+    start: np.ndarray,
+    end: np.ndarray,
+    budget: int = SAMPLE_BUDGET,
+) -> Maxima:
+    """max of constant + Σ Bⱼ·cos(βⱼ·t) over start ≤ t ≤ end, for every row at once
+    and for S sums per row that share its frequencies and window (the moments of a
+    chain's springs): ``constant`` (B, S), ``amplitudes`` (B, S, m), ``frequencies``
+    (B, m), ``start`` and ``end`` (B,).
+
+    Sampled at 16 points per period of the fastest mode that fits the budget (and
+    that some sum of the row has); every sampled local maximum within the sampling
+    error of the best is refined by golden section on its two neighbouring
+    intervals. Modes faster than the budget allows are added at their amplitude |Bⱼ|
+    (they swing through it within each of their periods), and the result says it is
+    a bound with its error ½·Σ|B·β²|·(π/β_fast)². A row's result does not depend on
+    the other rows.
+    """
+    rows, series, modes = amplitudes.shape
+    order = np.argsort(frequencies, axis=1, kind="stable")
+    w = np.take_along_axis(frequencies, order, axis=1)
+    b = np.take_along_axis(amplitudes, order[:, None, :], axis=2)
+    span = end - start
+    present = b != 0.0
+    resolved = (span[:, None] <= 0.0) | (
+        span[:, None] * w / (2.0 * math.pi) * SAMPLES_PER_PERIOD <= budget
+    )
+    slow = present & resolved[:, None, :]
+    fast = present & ~resolved[:, None, :]
+    b_slow = np.where(slow, b, 0.0)
+    sampled = slow.any(axis=1)  # (B, m): the modes the row's grid resolves
+    top = np.max(np.where(sampled, w, 0.0), axis=1, initial=0.0)
+    with np.errstate(all="ignore"):
+        counts = np.ceil(span * top / (2.0 * math.pi) * SAMPLES_PER_PERIOD)
+    counts = np.maximum(2, np.where(np.isfinite(counts), counts, 0).astype(np.int64) + 1)
+    step = span / (counts - 1)
+    curvature = np.zeros((rows, series))
+    for k in range(modes):
+        curvature = curvature + np.abs(b_slow[:, :, k]) * w[:, k, None] * w[:, k, None]
+    slack = curvature * step[:, None] * step[:, None] / 8.0
+
+    def grid_values(at: np.ndarray, t: np.ndarray) -> np.ndarray:
+        """The S sums of rows ``at`` at times ``t`` (G, K): (S, G, K), each cosine
+        evaluated once for all the sums of its row."""
+        total = np.broadcast_to(constant[at].T[:, :, None], (series,) + t.shape)
+        for k in range(modes):
+            cosine = np.cos(w[at, k][:, None] * t)
+            total = total + b_slow[at, :, k].T[:, :, None] * cosine[None]
+        return total
+
+    # Candidates (row, sum, sample index), by tiles of rows of like sample counts:
+    # rows grouped by the power of two above their count, so that a tile pads a row
+    # by at most twice its samples.
+    found: list[tuple[np.ndarray, np.ndarray, np.ndarray]] = []
+    live = np.flatnonzero(sampled.any(axis=1))
+    level = np.ceil(np.log2(counts[live])).astype(np.int64)
+    for value in np.unique(level):
+        members = live[level == value]
+        per = max(1, _TILE // (series * int(np.max(counts[members]))))
+        for first in range(0, len(members), per):
+            group = members[first : first + per]
+            found.append(_candidates(group, counts[group], start, step, slack, grid_values))
+    at = np.concatenate([f[0] for f in found]) if found else np.array([], dtype=int)
+    which = np.concatenate([f[1] for f in found]) if found else np.array([], dtype=int)
+    picked = np.concatenate([f[2] for f in found]) if found else np.array([], dtype=int)
+    t0, dt, t1 = start[at], step[at], end[at]
+    low = np.clip(t0 + dt * (picked - 1), t0, t1)
+    high = np.clip(t0 + dt * (picked + 1), t0, t1)
+    # Golden section, all candidates of all rows at once, one new point a step.
+    cc, bc, wc = constant[at, which], b_slow[at, which], w[at]
+
+    def candidate_values(t: np.ndarray) -> np.ndarray:
+        return _sums(cc, bc, wc, t)
+
+    a = high - _GOLDEN * (high - low)
+    c = low + _GOLDEN * (high - low)
+    f_a, f_c = candidate_values(a), candidate_values(c)
+    for _ in range(80):
+        left = f_a >= f_c  # the maximum is in [low, c]: c moves to a, a is new
+        high = np.where(left, c, high)
+        low = np.where(left, low, a)
+        new = np.where(left, high - _GOLDEN * (high - low), low + _GOLDEN * (high - low))
+        f_new = candidate_values(new)
+        a, c = np.where(left, new, c), np.where(left, a, new)
+        f_a, f_c = np.where(left, f_new, f_c), np.where(left, f_a, f_new)
+    # Every sum's candidates in time order, then its window's two ends: the first
+    # largest value wins.
+    row_of = np.repeat(np.arange(rows), series)
+    sum_of = np.tile(np.arange(series), rows)
+    point_rows = np.concatenate([at, row_of, row_of])
+    point_sums = np.concatenate([which, sum_of, sum_of])
+    points = np.concatenate([0.5 * (low + high), start[row_of], end[row_of]])
+    values = _sums(
+        constant[point_rows, point_sums], b_slow[point_rows, point_sums], w[point_rows], points
+    )
+    owner = point_rows * series + point_sums
+    choice = np.lexsort((np.arange(len(points)), -values, owner))
+    heads = choice[np.searchsorted(owner[choice], np.arange(rows * series))]
+    best_value = values[heads].reshape(rows, series)
+    best_time = points[heads].reshape(rows, series)
+    fast_amplitude = np.zeros((rows, series))
+    for k in range(modes):
+        fast_amplitude = fast_amplitude + np.where(fast[:, :, k], np.abs(b[:, :, k]), 0.0)
+    bound = fast.any(axis=2)
+    # One fast mode: each of its periods brings it to +|B| while the slow sum moves
+    # by at most ½·Σ|B·β²|·(π/β_fast)². With several, their phases need not line up:
+    # no error is claimed (0), the value is their supremum.
+    single = bound & (fast.sum(axis=2) == 1) & slow.any(axis=2)
+    w_fast = np.max(np.where(fast, w[:, None, :], 0.0), axis=2, initial=0.0)
+    with np.errstate(all="ignore"):
+        error = np.where(single, 0.5 * curvature * (math.pi / w_fast) ** 2, 0.0)
+    return Maxima(np.where(bound, best_value + fast_amplitude, best_value), best_time, bound, error)
+
+
+def _sums(constant: np.ndarray, b: np.ndarray, w: np.ndarray, t: np.ndarray) -> np.ndarray:
+    """constant + Σ bⱼ·cos(wⱼ·t), element by element (b and w: one row per element)."""
+    total = constant
+    for k in range(b.shape[1]):
+        total = total + b[:, k] * np.cos(w[:, k] * t)
+    return total
+
+
+def _candidates(
+    group: np.ndarray,
+    counts: np.ndarray,
+    start: np.ndarray,
+    step: np.ndarray,
+    slack: np.ndarray,
+    grid_values: Any,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The sampled local maxima within the slack of the best sample of each sum, for
+    the rows of ``group`` (a sample past a row's count is no sample): their rows,
+    sums and sample indices."""
+    width = int(np.max(counts))
+    series = slack.shape[1]
+    chunk = max(1, _TILE // (series * len(group)))
+    t0, dt = start[group][:, None], step[group][:, None]
+    limit = counts[:, None]
+
+    def sampled(index: np.ndarray) -> np.ndarray:
+        inside = (index >= 0) & (index < limit)
+        return np.where(inside[None], grid_values(group, t0 + dt * index), -np.inf)
+
+    whole = None
+    if width <= chunk:  # one tile: evaluated once for both passes
+        whole = sampled(np.arange(-1, width + 1)[None, :])
+        best = np.max(whole, axis=2)
+    else:
+        best = np.full((series, len(group)), -np.inf)
+        for first in range(0, width, chunk):  # the best sample of each sum
+            index = np.arange(first, min(first + chunk, width))[None, :]
+            best = np.maximum(best, np.max(sampled(index), axis=2))
+    floor = (best - slack[group].T)[:, :, None]
+    rows, sums, indices = [], [], []
+    for first in range(0, width, chunk):  # the local maxima near it
+        index = np.arange(first - 1, min(first + chunk + 1, width + 1))
+        values = whole if whole is not None else sampled(index[None, :])
+        middle = values[:, :, 1:-1]
+        peak = (middle >= values[:, :, :-2]) & (middle >= values[:, :, 2:])
+        inside = (index[1:-1][None, :] >= 0) & (index[1:-1][None, :] < limit)
+        which, row, col = np.nonzero(peak & inside[None] & (middle >= floor))
+        rows.append(group[row])
+        sums.append(which)
+        indices.append(index[1:-1][col])
+    return np.concatenate(rows), np.concatenate(sums), np.concatenate(indices)
