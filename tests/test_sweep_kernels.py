@@ -94,8 +94,9 @@ def test_kernel_equals_point_by_point(name: str, path: Path, monkeypatch):
     assert not slow.vectorized
     assert list(fast.status) == list(slow.status)  # declined points solved alone
     for key in fast.keys:
+        rtol = getattr(module, "ODE_REFERENCED", {}).get(key, 1e-11)
         np.testing.assert_allclose(
-            fast.columns[key], slow.columns[key], rtol=1e-11, atol=0, err_msg=key
+            fast.columns[key], slow.columns[key], rtol=rtol, atol=0, err_msg=key
         )
         assert list(np.isnan(fast.columns[key])) == list(np.isnan(slow.columns[key])), key
 

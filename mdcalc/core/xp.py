@@ -42,6 +42,7 @@ class Floats:
     cos = staticmethod(math.cos)
     sin = staticmethod(math.sin)
     tan = staticmethod(math.tan)
+    acos = staticmethod(math.acos)
     atan = staticmethod(math.atan)
     atan2 = staticmethod(math.atan2)
     hypot = staticmethod(math.hypot)
@@ -73,6 +74,7 @@ class Arrays:
         self.cos = np.cos
         self.sin = np.sin
         self.tan = np.tan
+        self.acos = np.arccos
         self.atan = np.arctan
         self.atan2 = np.arctan2
         self.hypot = np.hypot

@@ -24,7 +24,10 @@ A problem supplies, for its subcommand to exist:
    and :func:`mdcalc.input.model.with_values` puts the grid's arrays into the case so
    that the problem's own scene code runs on them. Never restate a formula in numpy.
    A sample the kernel cannot take (no answer there) is marked in the answer's
-   :data:`mdcalc.input.model.DECLINED` mask; the caller solves it alone.
+   :data:`mdcalc.input.model.DECLINED` mask; the caller solves it alone. Where the
+   single scene's reference is an ODE run and the kernel's value an exact closed
+   form, ``ODE_REFERENCED`` (result key -> relative tolerance) says how closely the
+   two agree.
 6. Reference, stiff and extreme cases in ``cases/<name>/`` with ``[expect]`` tables,
    and tests whose expected values are computed independently of the module.
 

@@ -28,8 +28,8 @@ Its files:
   reference with lift-off and touch-down.
 - ``solve.py``: The solver: the Methods, and the result.
 - ``report.py``: The report: the sections a hoist scene needs.
-- ``kernel.py``: The vectorized kernel of ``mdcalc sweep`` (rope-less scenes): the drive
-  formulas over a grid at once.
+- ``kernel.py``: The vectorized kernel of ``mdcalc sweep`` and ``mdcalc study``: the drive
+  formulas and the rope's closed forms over a grid at once.
 - ``history.py``: the exact piecewise solution of the rope model (the rope history
   and its peak), drawn by the charts.
 - ``charts.py``: The charts of ``--plot``: the rope dynamic factor against time from the exact
@@ -40,8 +40,8 @@ from __future__ import annotations
 
 from mdcalc.problems.hoist.case import Case, template
 from mdcalc.problems.hoist.charts import charts
-from mdcalc.problems.hoist.kernel import SWEEP_KEYS, sweep
+from mdcalc.problems.hoist.kernel import ODE_REFERENCED, SWEEP_KEYS, sweep
 from mdcalc.problems.hoist.report import report
 from mdcalc.problems.hoist.solve import solve
 
-__all__ = ["Case", "solve", "report", "template", "charts", "sweep", "SWEEP_KEYS"]
+__all__ = ["Case", "solve", "report", "template", "charts", "sweep", "SWEEP_KEYS", "ODE_REFERENCED"]

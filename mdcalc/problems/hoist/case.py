@@ -109,7 +109,8 @@ class Rope(CaseModel):
     def c(self) -> float:
         if self.stiffness is not None:
             return self.stiffness
-        assert self.elastic_modulus and self.area and self.length
+        assert self.elastic_modulus is not None and self.area is not None
+        assert self.length is not None
         return self.branches * self.elastic_modulus * self.area / self.length
 
 

@@ -7,6 +7,7 @@ import math
 from dataclasses import dataclass
 
 from mdcalc.core.units import rpm_to_rad_s
+from mdcalc.core.xp import of
 from mdcalc.methods import Method, compare
 from mdcalc.output.report import MethodQuantity, MethodsTable
 from mdcalc.problems.hoist.case import Case
@@ -70,7 +71,7 @@ class Inertia:
     @property
     def drive(self) -> float:
         """The rotating part of J, without the load [kg·m²]."""
-        return max(self.total - self.load, self.motor)
+        return of(self.total, self.motor).maximum(self.total - self.load, self.motor)
 
 
 def reduced_inertia(case: Case, motor_speed: float) -> Inertia:

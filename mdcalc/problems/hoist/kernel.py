@@ -1,17 +1,24 @@
-"""The vectorized kernel of ``mdcalc sweep`` (rope-less scenes): the drive
-formulas over a grid at once."""
+"""The vectorized kernel of ``mdcalc sweep`` and ``mdcalc study``: the drive
+formulas over a grid at once, and the rope's closed forms."""
 
 from __future__ import annotations
 
+import math
 from collections.abc import Collection
 from typing import Any
 
-from mdcalc.input.model import with_values
+from mdcalc.input.model import DECLINED, with_values
 from mdcalc.problems.hoist.case import Case
 from mdcalc.problems.hoist.drive import can_start, reduced_inertia, steady, uniform_start
+from mdcalc.problems.hoist.rope import ground_peak, hanging_closed_form
+from mdcalc.problems.hoist.solve import rope_scene
+
+#: Results whose single-scene reference is an ODE run (DOP853, rtol 10⁻¹⁰) that the
+#: kernel's exact closed form meets within this relative tolerance.
+ODE_REFERENCED = {"ground_peak_force": 1e-9, "ground_dynamic_factor": 1e-9}
 
 #: Keys ``mdcalc sweep`` may vary in the vectorized form (N: any list index), and what
-#: each sets. The rope's keys are not here: its peaks need the ODE runs.
+#: each sets.
 SWEEP_KEYS = {
     "gravity": "g",
     "load.mass": "m",
@@ -27,34 +34,45 @@ SWEEP_KEYS = {
     "drive.shafts.N.ratio": "ω1/ω_k",
     "start.time": "t_p",
     "start.starting_torque": "M_start",
+    "rope.stiffness": "c",
+    "rope.elastic_modulus": "E",
+    "rope.area": "A",
+    "rope.length": "L",
+    "rope.branches": "branches",
+    "rope.drive_mass": "m1",
+    "rope.slack_length": "slack",
 }
 
 
 def sweep(
     case: Case, grid: dict[str, Any], wanted: Collection[str] | None = None
 ) -> dict[str, Any] | None:
-    """Every numeric result of a rope-less scene over a grid at once (numpy), by the
+    """Every numeric result of the scene over a grid at once (numpy), by the
     formulas of :func:`solve` run on a copy of the case that holds the grid's arrays.
 
-    None with a rope (its peaks need the ODE runs), for a key this form does not know
-    or one that switches an alternative (t_p or M_start, speed_rpm or ratio), and when
-    the motor cannot start the load at some point (that point has no answer, exit 3).
+    The rope's peaks are the closed forms of the two-mass model: the hanging load's
+    is the reference; the grounded load's reference is the ODE run (rtol 10⁻¹⁰),
+    which the exact closed form meets within that tolerance where it holds. A point
+    where it does not (the load lifts off after the start, the rope goes slack after
+    the peak), or where the motor cannot start the load, is marked ``DECLINED``, to
+    be solved alone. None for a key this form does not know, one that switches an
+    alternative (t_p or M_start, speed_rpm or ratio, stiffness or E·A/L), or a rope
+    key where the case has no rope.
     """
     import numpy as np
 
-    if case.rope is not None:
-        return None
     for key in grid:
         parts = key.split(".")
         pattern = ".".join("N" if p.isdigit() else p for p in parts)
         if pattern not in SWEEP_KEYS or _value_at(case, parts) is None:
             return None
     case = with_values(case, {key: np.asarray(column, dtype=float) for key, column in grid.items()})
+    size = max([np.size(v) for v in grid.values()] + [1])
     st = steady(case)
-    if not np.all(can_start(case, st)):
-        return None
+    declined = ~np.broadcast_to(np.asarray(can_start(case, st)), (size,))
     inertia = reduced_inertia(case, st.motor_speed)
-    motion = uniform_start(case, st, inertia.total)
+    with np.errstate(all="ignore"):
+        motion = uniform_start(case, st, inertia.total)
     values: dict[str, Any] = {
         "weight": st.weight,
         "total_efficiency": st.efficiency,
@@ -77,7 +95,30 @@ def sweep(
         values["shaft_inertia"] = inertia.shafts
         values["load_inertia"] = inertia.load
         values["inertia_ratio"] = inertia.ratio
-    return values
+    if case.rope is not None:
+        rope = rope_scene(case, st, inertia, motion)
+        with np.errstate(all="ignore"):
+            beta = rope.beta
+            hanging = hanging_closed_form(rope, beta)
+            peak, limits = ground_peak(rope, heavy_drive=False)
+        for outside, _ in limits:
+            declined = declined | np.broadcast_to(outside, (size,))
+        values |= {
+            "rope_stiffness": rope.c,
+            "drive_mass": rope.m1,
+            "rope_frequency": beta,
+            "half_period": math.pi / beta,
+            "hanging_peak_force": hanging["peak_force"],
+            "hanging_dynamic_factor": hanging["dynamic_factor"],
+            "ground_peak_force": peak,
+            "ground_dynamic_factor": peak / rope.weight,
+        }
+    out = {
+        key: np.where(declined, np.nan, np.broadcast_to(np.asarray(value, dtype=float), (size,)))
+        for key, value in values.items()
+    }
+    out[DECLINED] = declined
+    return out
 
 
 def _value_at(node: Any, parts: list[str]) -> Any:

@@ -5,9 +5,11 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 from mdcalc.core.ode import IMPORTS as ODE_IMPORTS
 from mdcalc.core.sdof import rectangular_pulse_peak
+from mdcalc.core.xp import of
 from mdcalc.methods import Method, NotApplicable, compare
 from mdcalc.output.report import MethodQuantity, MethodsTable
 
@@ -17,70 +19,85 @@ MAX_ODE_PERIODS = 3000
 
 @dataclass(frozen=True)
 class RopeScene:
-    c: float  # rope stiffness [N/m]
-    m1: float  # drive mass on the rope line [kg]
-    m2: float  # load mass [kg]
-    weight: float  # G [N]
-    acceleration: float  # V/t_p [m/s²]
-    start_time: float  # t_p [s]
-    slack: float  # [m]
+    """The two-mass model at start. Its numbers are floats for one scene, or numpy
+    arrays over a block of scenes (a study's samples): the closed forms below run
+    on either (:mod:`mdcalc.core.xp`)."""
+
+    c: Any  # rope stiffness [N/m]
+    m1: Any  # drive mass on the rope line [kg]
+    m2: Any  # load mass [kg]
+    weight: Any  # G [N]
+    acceleration: Any  # V/t_p [m/s²]
+    start_time: Any  # t_p [s]
+    slack: Any  # [m]
 
     @property
-    def beta(self) -> float:
+    def beta(self) -> Any:
         """Two-mass natural frequency √(c·(1/m1 + 1/m2)) [rad/s]."""
-        return math.sqrt(self.c * (1.0 / self.m1 + 1.0 / self.m2))
+        return of(self.c, self.m1, self.m2).sqrt(self.c * (1.0 / self.m1 + 1.0 / self.m2))
 
     @property
-    def drive_force(self) -> float:
+    def drive_force(self) -> Any:
         """Drive force during the start: G + (m1 + m2)·a [N]."""
         return self.weight + (self.m1 + self.m2) * self.acceleration
 
 
-def hanging_closed_form(r: RopeScene, beta: float) -> dict[str, float]:
+def hanging_closed_form(r: RopeScene, beta: Any) -> dict[str, Any]:
     """(7.92)-(7.96) corrected: a rectangular force pulse m2·a of length t_p."""
     peak = r.weight + r.m2 * r.acceleration * rectangular_pulse_peak(beta, r.start_time)
     return {"peak_force": peak, "dynamic_factor": peak / r.weight}
 
 
 def ground_closed_form(r: RopeScene, heavy_drive: bool) -> dict[str, float]:
-    """Load lying on the ground: slack taken up, load lifts off, first peak.
+    """Load lying on the ground: slack taken up, load lifts off, first peak
+    (:func:`ground_peak`); raises NotApplicable where the closed form does not hold."""
+    peak, limits = ground_peak(r, heavy_drive)
+    for outside, reason in limits:
+        if outside:
+            raise NotApplicable(reason)
+    return {"peak_force": peak, "dynamic_factor": peak / r.weight}
+
+
+def ground_peak(r: RopeScene, heavy_drive: bool) -> tuple[Any, list[tuple[Any, str]]]:
+    """The first peak of the rope force after lift-off, and the limits of the closed
+    form in order, each (where it is broken, why); over arrays the peak is NaN or
+    meaningless where a limit is broken.
 
     Exact for the two-mass model while the start lasts past the first peak. With
     ``heavy_drive`` the drive follows the uniform start exactly (m1 → ∞).
     """
     g_force, c, a = r.weight, r.c, r.acceleration
+    xp = of(g_force, c, a, r.m1, r.m2, r.start_time, r.slack)
     if heavy_drive:
         # Drum end moves as a·t²/2: taut at s, lift-off at s + G/c.
-        speed = math.sqrt(2.0 * a * (r.slack + g_force / c))
+        speed = xp.sqrt(2.0 * a * (r.slack + g_force / c))
         t_lift = speed / a
-        beta = math.sqrt(c / r.m2)
+        beta = xp.sqrt(c / r.m2)
     else:
         force = r.drive_force
-        t_slack = math.sqrt(2.0 * r.slack * r.m1 / force)
+        t_slack = xp.sqrt(2.0 * r.slack * r.m1 / force)
         v_slack = force / r.m1 * t_slack
-        beta1 = math.sqrt(c / r.m1)
+        beta1 = xp.sqrt(c / r.m1)
         # Drive on the rope with the load grounded: c·ξ = F - R·cos(β1·τ + θ).
-        amplitude = math.hypot(force, c * v_slack / beta1)
-        theta = math.atan2(c * v_slack / beta1, force)
-        tau = (math.acos((force - g_force) / amplitude) - theta) / beta1
-        speed = amplitude * beta1 / c * math.sin(beta1 * tau + theta)
+        amplitude = xp.hypot(force, c * v_slack / beta1)
+        theta = xp.atan2(c * v_slack / beta1, force)
+        tau = (xp.acos((force - g_force) / amplitude) - theta) / beta1
+        speed = amplitude * beta1 / c * xp.sin(beta1 * tau + theta)
         t_lift = t_slack + tau
         beta = r.beta
-    if t_lift > r.start_time:
-        raise NotApplicable("the load lifts off after the start has ended")
     # After lift-off the rope force oscillates about G + m2·a at β.
     w0 = -r.m2 * a / c
-    phase = math.atan2(speed / beta, w0)
-    if t_lift + phase / beta > r.start_time:
-        raise NotApplicable("the first peak comes after the start has ended")
-    swing = c * math.hypot(w0, speed / beta)
-    if swing > g_force + r.m2 * a:
+    phase = xp.atan2(speed / beta, w0)
+    swing = c * xp.hypot(w0, speed / beta)
+    limits = [
+        (t_lift > r.start_time, "the load lifts off after the start has ended"),
+        (t_lift + phase / beta > r.start_time, "the first peak comes after the start has ended"),
         # The rope goes slack after the peak and re-tightens with a jerk: later
         # peaks are not bounded by the first one.
-        raise NotApplicable("the rope goes slack after the first peak")
+        (swing > g_force + r.m2 * a, "the rope goes slack after the first peak"),
+    ]
     # After the start the force swings about G with at most swing + m2·a: never higher.
-    peak = g_force + r.m2 * a + swing
-    return {"peak_force": peak, "dynamic_factor": peak / g_force}
+    return g_force + r.m2 * a + swing, limits
 
 
 #: Smooth pieces of one rope ODE run (each lift-off or touch-down starts one); the

@@ -53,18 +53,7 @@ def solve(case: Case) -> Result:
         )
         return result
     if case.rope is not None:
-        m1 = case.rope.drive_mass
-        if m1 is None:
-            m1 = inertia.drive * (st.motor_speed / case.load.lifting_speed) ** 2
-        rope = RopeScene(
-            c=case.rope.c,
-            m1=m1,
-            m2=case.load.mass,
-            weight=st.weight,
-            acceleration=motion.load_acceleration,
-            start_time=motion.time,
-            slack=case.rope.slack_length,
-        )
+        rope = rope_scene(case, st, inertia, motion)
         result.rope = rope
         result.rope_hanging = rope_methods(rope, hanging=True)
         result.rope_ground = rope_methods(rope, hanging=False)
@@ -75,3 +64,20 @@ def _reference(table: MethodsTable, key: str) -> float:
     value = next(row for row in table.rows if row.reference).values[key]
     assert value is not None
     return value
+
+
+def rope_scene(case: Case, st: Steady, inertia: Inertia, motion: StartMotion) -> RopeScene:
+    """The two-mass model of the rope at start (floats, or arrays over a block)."""
+    assert case.rope is not None
+    m1 = case.rope.drive_mass
+    if m1 is None:
+        m1 = inertia.drive * (st.motor_speed / case.load.lifting_speed) ** 2
+    return RopeScene(
+        c=case.rope.c,
+        m1=m1,
+        m2=case.load.mass,
+        weight=st.weight,
+        acceleration=motion.load_acceleration,
+        start_time=motion.time,
+        slack=case.rope.slack_length,
+    )
