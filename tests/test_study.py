@@ -560,8 +560,10 @@ def test_samples_run_each_reference_alone_with_the_same_values(tmp_path, monkeyp
     # A sample one by one runs each Methods table's reference alone (no ODE check
     # rows, no timing repeats): the study's values are the very ones of samples run
     # with every method, and the Methods rows besides the reference are not run.
+    from mdcalc.problems import PROBLEMS
     from mdcalc.runs import sweep
 
+    monkeypatch.setattr(PROBLEMS["resonance"].load(), "sweep", None)  # one by one
     text = (CASES / "studies" / "resonance_flywheel.toml").read_text(encoding="utf-8")
     path = study_file(tmp_path, text.split("[expect]")[0].replace("samples = 128", "samples = 16"))
     alone = run_study(path, jobs=1)

@@ -32,16 +32,42 @@ from tests.test_sweep_kernels import CASE_FILES
 from tests.test_sweep_kernels import _held as held
 
 #: The problems whose kernel covers every numeric result key (issue 31, item 1).
-EVERY_KEY = {"clutch", "mine-hoist", "hoist"}
+EVERY_KEY = {"clutch", "mine-hoist", "hoist", "resonance"}
 SAMPLES = 50
+
+
+def expand(patterns, data: dict) -> list[str]:
+    """The kernel's keys with each list index N spelt out for the lists the case has
+    (at most three items of a list, its first, middle and last)."""
+    keys: list[str] = []
+    for pattern in patterns:
+        done = [""]
+        for part in pattern.split("."):
+            grown = []
+            for prefix in done:
+                node = data
+                for step in prefix.split(".") if prefix else []:
+                    node = node[int(step)] if isinstance(node, list) else node.get(step, {})
+                if part == "N":
+                    size = len(node) if isinstance(node, list) else 0
+                    picks = sorted({0, size // 2, size - 1}) if size else []
+                    grown += [f"{prefix}.{i}".lstrip(".") for i in picks]
+                else:
+                    grown.append(f"{prefix}.{part}".lstrip("."))
+            done = grown
+        keys += done
+    return keys
 
 
 def put(data: dict, key: str, value: float) -> None:
     *path, last = key.split(".")
     node = data
     for part in path:
-        node = node[part]
-    node[last] = value
+        node = node[int(part)] if isinstance(node, list) else node[part]
+    if isinstance(node, list):
+        node[int(last)] = value
+    else:
+        node[last] = value
 
 
 @pytest.mark.parametrize(("name", "path"), CASE_FILES, ids=[f"{n}:{p.name}" for n, p in CASE_FILES])
@@ -54,7 +80,7 @@ def test_kernel_equals_single_scenes_on_random_samples(name: str, path: Path, mo
     module = PROBLEMS[name].load()
     data = tomllib.loads(path.read_text(encoding="utf-8"))
     data.pop("expect", None)
-    keys = [k for k in module.SWEEP_KEYS if held(data, k) not in (None, 0)]
+    keys = [k for k in expand(module.SWEEP_KEYS, data) if held(data, k) not in (None, 0)]
     if not keys:
         pytest.skip("the case holds no key the kernel varies")
 

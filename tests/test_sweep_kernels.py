@@ -26,6 +26,9 @@ def test_closed_form_problems_have_kernels():
 def _held(data: dict, key: str):
     node = data
     for part in key.split("."):
+        if isinstance(node, list) and part.isdigit() and int(part) < len(node):
+            node = node[int(part)]
+            continue
         if not isinstance(node, dict) or part not in node:
             return None
         node = node[part]

@@ -486,24 +486,75 @@ def harmonic_response(
     amplitudes (cₖ + iωαₖ)·(Xₖ - Xₖ₊₁) [N·m]. ``spring_damping`` αₖ acts across
     spring k, ``absolute_damping`` on mass k against the ground [N·m·s/rad],
     ``ground_stiffness`` holds mass k to the ground (a shaft to a fixed end, a motor's
-    electromagnetic spring) [N·m/rad].
+    electromagnetic spring) [N·m/rad]. See :func:`block_harmonic_response`.
     Raises ArithmeticError when the matrix is singular (undamped resonance)."""
-    difference = chain.difference_matrix()
-    alpha = np.array(spring_damping if spring_damping is not None else [0.0] * (chain.size - 1))
-    ground = np.array(absolute_damping if absolute_damping is not None else [0.0] * chain.size)
-    held = np.array(ground_stiffness if ground_stiffness is not None else [0.0] * chain.size)
-    damping = difference.T @ np.diag(alpha) @ difference + np.diag(ground)
-    stiffness = chain.stiffness_matrix() + np.diag(held)
-    dynamic = stiffness - omega * omega * chain.mass_matrix() + 1j * omega * damping
-    load = np.array(torques, dtype=complex)
-    scale = float(np.max(np.abs(dynamic)))
-    # Judge the conditioning after a symmetric diagonal scaling S⁻¹·A·S⁻¹: a chain
-    # whose stiffnesses span 10¹⁶ is not singular, only badly scaled.
-    weights = np.sqrt(np.maximum(np.diag(stiffness), omega * omega * np.diag(chain.mass_matrix())))
-    weights[weights == 0.0] = 1.0
-    scaled = dynamic / weights[:, None] / weights[None, :]
-    if scale == 0.0 or np.linalg.cond(scaled) > 1e14:
+
+    def one(values: Sequence[float] | None) -> np.ndarray | None:
+        return None if values is None else np.array([values], dtype=float)
+
+    j, c = chain.arrays()
+    angles, springs, singular = block_harmonic_response(
+        j,
+        c,
+        np.array([omega], dtype=float),
+        np.array([torques], dtype=complex),
+        one(spring_damping),
+        one(absolute_damping),
+        one(ground_stiffness),
+    )
+    if singular[0]:
         raise ArithmeticError(f"undamped resonance at ω = {omega:.6g} rad/s: amplitude unbounded")
-    angles = np.linalg.solve(scaled, load / weights) / weights
-    springs = (np.array(chain.stiffnesses) + 1j * omega * alpha) * (difference @ angles)
-    return angles, springs
+    return angles[0], springs[0]
+
+
+def block_harmonic_response(
+    inertias: np.ndarray,
+    stiffnesses: np.ndarray,
+    omega: np.ndarray,
+    torques: np.ndarray,
+    spring_damping: np.ndarray | None = None,
+    absolute_damping: np.ndarray | None = None,
+    ground_stiffness: np.ndarray | None = None,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """:func:`harmonic_response` of a block of chains (J (B, n), c (B, n-1), ω (B,),
+    torques (B, n) complex, the dampings and ground springs (B, ·) or None): the
+    angles (B, n), the spring moments (B, n-1), and where the matrix is singular to
+    working precision (B,) — those rows' numbers mean nothing.
+
+    The conditioning is judged after a symmetric diagonal scaling S⁻¹·A·S⁻¹: a chain
+    whose stiffnesses span 10¹⁶ is not singular, only badly scaled."""
+    size, n = inertias.shape
+    alpha = spring_damping if spring_damping is not None else np.zeros((size, n - 1))
+    ground = absolute_damping if absolute_damping is not None else np.zeros((size, n))
+    held = ground_stiffness if ground_stiffness is not None else np.zeros((size, n))
+    stiffness = np.zeros((size, n, n))
+    damping = np.zeros((size, n, n))
+    for matrix, spring in ((stiffness, stiffnesses), (damping, alpha)):
+        for k in range(n - 1):
+            matrix[:, k, k] += spring[:, k]
+            matrix[:, k + 1, k + 1] += spring[:, k]
+            matrix[:, k, k + 1] -= spring[:, k]
+            matrix[:, k + 1, k] -= spring[:, k]
+    index = np.arange(n)
+    stiffness[:, index, index] += held
+    damping[:, index, index] += ground
+    w2 = (omega * omega)[:, None]
+    dynamic = stiffness - w2[:, :, None] * _diagonal(inertias) + 1j * omega[:, None, None] * damping
+    scale = np.max(np.abs(dynamic), axis=(1, 2))
+    weights = np.sqrt(np.maximum(stiffness[:, index, index], w2 * inertias))
+    weights[weights == 0.0] = 1.0
+    scaled = dynamic / weights[:, :, None] / weights[:, None, :]
+    with np.errstate(all="ignore"):
+        singular = (scale == 0.0) | ~(np.linalg.cond(scaled) <= 1e14)
+    scaled[singular] = np.eye(n)
+    angles = np.linalg.solve(scaled, (torques / weights)[:, :, None])[:, :, 0] / weights
+    springs = (stiffnesses + 1j * omega[:, None] * alpha) * (angles[:, :-1] - angles[:, 1:])
+    return angles, springs, singular
+
+
+def _diagonal(values: np.ndarray) -> np.ndarray:
+    """(B, n) -> (B, n, n) with the values on each diagonal."""
+    out = np.zeros(values.shape + values.shape[-1:])
+    index = np.arange(values.shape[-1])
+    out[:, index, index] = values
+    return out

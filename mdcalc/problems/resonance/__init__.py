@@ -27,6 +27,9 @@ Its files:
 - ``mathieu.py``: Parametric excitation: the Mathieu equation, its stability by Floquet theory.
 - ``solve.py``: The solver: the Methods, and the result.
 - ``report.py``: The report: the sections a resonance scene needs.
+- ``kernel.py``: The vectorized kernel of ``mdcalc sweep`` and ``mdcalc study``: every
+  numeric result over a block of chains (the Mathieu points aside), by the functions
+  the single scene runs on a block of one.
 - ``charts.py``: The charts of ``--plot``: the Campbell diagram and the Ince-Strutt chart of
   the Mathieu equation (data only).
 """
@@ -35,7 +38,8 @@ from __future__ import annotations
 
 from mdcalc.problems.resonance.case import Case, template
 from mdcalc.problems.resonance.charts import charts
+from mdcalc.problems.resonance.kernel import SWEEP_KEYS, sweep
 from mdcalc.problems.resonance.report import report
 from mdcalc.problems.resonance.solve import solve
 
-__all__ = ["Case", "solve", "report", "template", "charts"]
+__all__ = ["Case", "solve", "report", "template", "charts", "sweep", "SWEEP_KEYS"]

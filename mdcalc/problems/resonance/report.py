@@ -9,10 +9,12 @@ from mdcalc.output.report import Column, Quantities, Quantity, Report, Table, Va
 from mdcalc.problems.resonance.case import Campbell, ChainSection, Mathieu, Measured, Resonance
 from mdcalc.problems.resonance.chain import (
     Modal,
+    algebraic_sum,
     energy_method,
     forced_response,
     geometric_sum,
     is_main_order,
+    modal_dissipation,
 )
 from mdcalc.problems.resonance.mathieu import (
     first_approximation,
@@ -143,13 +145,13 @@ def _resonance_section(c: ChainSection, md: Modal, r: Resonance, solved: bool) -
             Quantity(
                 "algebraic_sum",
                 "Σ aᵢ over the cranks",
-                math.fsum(md.shapes[j][m - 1] for m in c.cranks),
+                algebraic_sum(c, md.shapes[j]),
                 "",
             ),
             Quantity("main_order", "Main order (all phases equal)", is_main_order(c, r.order), ""),
         ]
     if r.harmonic_torque is not None and c.damping is not None:
-        dissipation = math.fsum(x * a * a for x, a in zip(c.damping, md.shapes[j], strict=True))
+        dissipation = modal_dissipation(c, md, j)
         items.append(Quantity("modal_damping", "Σ ξᵢ·aᵢ²", dissipation, "N·m·s/rad"))
         if solved:
             amp = energy_method(c, md, j, r.order, r.harmonic_torque)

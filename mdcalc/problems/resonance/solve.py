@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Literal
@@ -17,7 +16,9 @@ from mdcalc.problems.resonance.chain import (
     energy_method,
     forced_response,
     modal,
+    modal_dissipation,
     peak_response,
+    undamped_mode,
 )
 from mdcalc.problems.resonance.mathieu import (
     liouville,
@@ -59,10 +60,11 @@ def solve(case: Case) -> Result:
         md, j = result.modal, r.mode - 1
         section, torque = case.chain, r.harmonic_torque
         assert section.damping is not None
-        dissipation = math.fsum(
-            x * a * a for x, a in zip(section.damping, md.shapes[j], strict=True)
-        )
-        if dissipation <= 1e-12 * math.fsum(section.damping) or not any(section.damping):
+        import numpy as np
+
+        damping = np.array([section.damping], dtype=float)
+        dissipation = modal_dissipation(section, md, j)
+        if undamped_mode(damping, np.array([dissipation]))[0]:
             result.status, result.message = (
                 "no-answer",
                 f"undamped resonance: no damping moves in mode {r.mode} (Σ ξᵢ·aᵢ² = 0), "
