@@ -24,6 +24,7 @@ from mdcalc.core.budget import DEFAULT_SECONDS
 from mdcalc.errors import EXIT_BUG, EXIT_INPUT, EXIT_NO_ANSWER, EXIT_OK, InputError, Problem
 from mdcalc.input.casefile import CaseText, is_integer_field, read_case, unit_of, validate
 from mdcalc.input.model import DECLINED
+from mdcalc.runs.cluster import PoolMapper
 from mdcalc.runs.runner import problem_of, solve_model
 
 #: A grid larger than this is refused: 10⁷ points of a vectorized problem take
@@ -357,8 +358,12 @@ def evaluate(
     columns: dict[str, Any] = dict(grid)
     kernel = getattr(module, "sweep", None)
     model = validate(module.Case, sweep.case)
-    vectorized = kernel(model, grid, wanted) if kernel is not None else None
     status = np.zeros(sweep.points, dtype=int)
+    messages: list[str] = []
+    if kernel is not None and mapper is not None and not isinstance(mapper, PoolMapper):
+        vectorized = _kernel_on_cluster(sweep, grid, keys, wanted, mapper, status, messages)
+    else:
+        vectorized = kernel(model, grid, wanted) if kernel is not None else None
     todo = np.arange(sweep.points)
     if vectorized is not None and all(k in vectorized for k in wanted):
         for key in wanted:
@@ -368,7 +373,7 @@ def evaluate(
         if declined is None or not np.any(declined):
             if on_done is not None:
                 on_done(sweep.points)
-            return Table(keys + wanted, units, columns, status, vectorized=True)
+            return Table(keys + wanted, units, columns, status, messages, vectorized=True)
         todo = np.flatnonzero(np.broadcast_to(declined, (sweep.points,)))
         if on_done is not None:
             on_done(sweep.points - len(todo))
@@ -377,14 +382,11 @@ def evaluate(
             columns[key] = np.full(sweep.points, np.nan)
 
     # Point by point: every point, or the points the kernel declined.
-    from mdcalc.runs.cluster import PoolMapper
-
     run = mapper if mapper is not None else PoolMapper(jobs)
     path = str(sweep.case.path)
     alone = reference_only_fits(sweep.problem, module, model, wanted, time_limit)
     points = list(sweep.grid())
     tasks = [(path, sweep.problem, sweep.data_at(points[i]), time_limit, alone) for i in todo]
-    messages: list[str] = []
     done = (lambda: on_done(1)) if on_done is not None else None
     outcomes = run(point_results, tasks, done, _lost_point)
     for index, (code, values, message) in zip(todo.tolist(), outcomes, strict=True):
@@ -396,6 +398,49 @@ def evaluate(
             columns[key][index] = values.get(key, np.nan)
     by_kernel = len(todo) < sweep.points
     return Table(keys + wanted, units, columns, status, messages, vectorized=by_kernel)
+
+
+#: Grid points a kernel block holds on a cluster.
+CLUSTER_BLOCK = 65_536
+
+
+def _kernel_on_cluster(
+    sweep: Plan,
+    grid: dict[str, Any],
+    keys: list[str],
+    wanted: list[str],
+    mapper: Any,
+    status: Any,
+    messages: list[str],
+) -> dict[str, Any] | None:
+    """The kernel in blocks of points on the cluster's workers, retried where one
+    dies; a block lost past the retries gives its points exit 70 and a message. None
+    where the kernel declines the grid (point by point then)."""
+    import numpy as np
+
+    from mdcalc.runs.study.evaluate import KernelChunk, LostBlock, lost_block
+
+    data = copy.deepcopy(sweep.case.data)
+    data.pop("expect", None)
+    points = np.column_stack([grid[key] for key in keys])
+    blocks = [points[i : i + CLUSTER_BLOCK] for i in range(0, len(points), CLUSTER_BLOCK)]
+    run = KernelChunk(sweep.problem, sweep.case.path, data, keys, wanted)
+    columns = {key: np.full(len(points), np.nan) for key in wanted}
+    declined = np.zeros(len(points), dtype=bool)
+    start = 0
+    for block, part in zip(blocks, mapper(run, blocks, on_error=lost_block), strict=True):
+        end = start + len(block)
+        if part is None:
+            return None
+        if isinstance(part, LostBlock):
+            status[start:end] = EXIT_BUG
+            messages.append(f"{sweep.case.path}: error: points {start} to {end - 1}: {part.reason}")
+        else:
+            for key in wanted:
+                columns[key][start:end] = part[key]
+            declined[start:end] = part[DECLINED]
+        start = end
+    return columns | {DECLINED: declined}
 
 
 def _lost_point(task: Any, error: BaseException) -> tuple[int, dict[str, Any], str]:

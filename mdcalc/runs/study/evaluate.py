@@ -58,12 +58,23 @@ class Evaluated:
 class KernelChunk:
     """The problem's kernel on a block of samples (picklable for a pool or cluster)."""
 
-    def __init__(self, plan: Plan, wanted: Sequence[str]) -> None:
-        self.problem = plan.problem
-        self.path = str(plan.case.path)
-        self.scene = plan.scene_data
-        self.keys = plan.keys
+    def __init__(
+        self,
+        problem: str,
+        path: Path,
+        scene: dict[str, Any],
+        keys: Sequence[str],
+        wanted: Sequence[str],
+    ) -> None:
+        self.problem = problem
+        self.path = str(path)
+        self.scene = scene
+        self.keys = list(keys)
         self.wanted = list(wanted)
+
+    @classmethod
+    def of(cls, plan: Plan, wanted: Sequence[str]) -> KernelChunk:
+        return cls(plan.problem, plan.case.path, plan.scene_data, plan.keys, wanted)
 
     def __call__(self, block: Any) -> dict[str, Any] | None:
         import warnings
@@ -183,7 +194,7 @@ def _kernel_fits(plan: Plan, samples: Any, wanted: Sequence[str]) -> bool:
             return False
     import numpy as np
 
-    return KernelChunk(plan, wanted)(np.array(ends).T) is not None
+    return KernelChunk.of(plan, wanted)(np.array(ends).T) is not None
 
 
 def _by_kernel(
@@ -198,7 +209,7 @@ def _by_kernel(
 
     n = len(samples)
     blocks = [samples[i : i + KERNEL_CHUNK] for i in range(0, n, KERNEL_CHUNK)]
-    run = KernelChunk(plan, wanted)
+    run = KernelChunk.of(plan, wanted)
     parts: Iterable[dict[str, Any] | LostBlock | None]
     if isinstance(mapper, PoolMapper):
         # The first block runs here. A closed form's kernel is faster here than
