@@ -13,9 +13,11 @@ from mdcalc.problems.hoist.drive import can_start, reduced_inertia, steady, unif
 from mdcalc.problems.hoist.rope import ground_peak, hanging_closed_form
 from mdcalc.problems.hoist.solve import rope_scene
 
-#: Results whose single-scene reference is an ODE run (DOP853, rtol 10⁻¹⁰) that the
-#: kernel's exact closed form meets within this relative tolerance.
-ODE_REFERENCED = {"ground_peak_force": 1e-9, "ground_dynamic_factor": 1e-9}
+#: Results whose single-scene reference is an ODE run (DOP853, rtol 10⁻¹⁰ a step)
+#: that the kernel's exact closed form meets within this relative tolerance: the
+#: run's own error, measured up to 2.5·10⁻⁸ near the shipped cases (the closed form
+#: agrees with a run at rtol 10⁻¹² to 2·10⁻¹² there).
+ODE_REFERENCED = {"ground_peak_force": 1e-7, "ground_dynamic_factor": 1e-7}
 
 #: Keys ``mdcalc sweep`` may vary in the vectorized form (N: any list index), and what
 #: each sets.
