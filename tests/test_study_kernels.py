@@ -33,7 +33,7 @@ from tests.test_sweep_kernels import CASE_FILES
 from tests.test_sweep_kernels import _held as held
 
 #: The problems whose kernel covers every numeric result key (issue 31, item 1).
-EVERY_KEY = {"clutch", "mine-hoist", "hoist", "resonance"}
+EVERY_KEY = {"clutch", "mine-hoist", "hoist", "resonance", "variator"}
 SAMPLES = 50
 
 

@@ -9,6 +9,8 @@
   the system costs only the item that killed it.
 - ``cluster.py``: ``--scheduler``: the pool or a dask.distributed cluster behind one
   mapper.
+- ``kernel.py``: a problem's vectorized kernel on a block of samples or grid points,
+  for the pool or the cluster, and a block lost for good.
 - ``batch.py``: ``mdcalc run``: one outcome per file, in input order.
 - ``check.py``: ``mdcalc check``: the ``[expect]`` tables.
 - ``sweep.py``: ``mdcalc sweep``: the grid, vectorized kernels or point-by-point

@@ -418,7 +418,7 @@ def _kernel_on_cluster(
     where the kernel declines the grid (point by point then)."""
     import numpy as np
 
-    from mdcalc.runs.study.evaluate import KernelChunk, LostBlock, lost_block
+    from mdcalc.runs.kernel import KernelChunk, LostBlock, lost_block
 
     data = copy.deepcopy(sweep.case.data)
     data.pop("expect", None)

@@ -49,6 +49,8 @@ Its files:
   large-swing period.
 - ``solve.py``: The solver: the parts the case has, their Methods, and the result.
 - ``report.py``: The report: a section for each part the case has.
+- ``kernel.py``: The vectorized kernel of ``mdcalc sweep`` and ``mdcalc study`` for the
+  absorber (7a): every numeric result of its sections over a block of scenes.
 - ``charts.py``: The charts of ``--plot``: absorber amplitudes, the clutch's loading
   curve and its lines, the transfer functions, the clutch load over a stroke, the
   anti-resonance design and the pendulum (data only).
@@ -58,7 +60,8 @@ from __future__ import annotations
 
 from mdcalc.problems.variator.case import Case, template
 from mdcalc.problems.variator.charts import charts
+from mdcalc.problems.variator.kernel import SWEEP_KEYS, sweep
 from mdcalc.problems.variator.report import report
 from mdcalc.problems.variator.solve import solve
 
-__all__ = ["Case", "solve", "report", "template", "charts"]
+__all__ = ["Case", "solve", "report", "template", "charts", "sweep", "SWEEP_KEYS"]

@@ -5,66 +5,74 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
 from mdcalc.core.chain import Chain, harmonic_response
+from mdcalc.core.xp import FLOATS, of
 from mdcalc.methods import NotApplicable
 from mdcalc.problems.variator.case import Absorber
 
 
 @dataclass(frozen=True)
 class AbsorberScene:
-    j1: float
-    c: float
-    j2: float
-    cg: float
-    bg: float
-    m0: float
-    omega: float
-    tuned: bool  # c_g = J₂·ω² (A₁ is exactly 0 without damping)
+    """The two-disk absorber. Its numbers are floats for one scene, or numpy arrays
+    over a block of scenes (a study's samples): every method runs on either."""
 
-    def amplitudes(self, omega: float) -> tuple[complex, complex]:
+    j1: Any
+    c: Any
+    j2: Any
+    cg: Any
+    bg: Any
+    m0: Any
+    omega: Any
+    tuned: Any  # c_g = J₂·ω² (A₁ is exactly 0 without damping)
+
+    def amplitudes(self, omega: Any) -> tuple[Any, Any]:
         """Complex A₁, A₂ [rad] at ω: (8.38) with k_g = c_g + iω·b_g."""
         w2 = omega * omega
-        kg = complex(self.cg, omega * self.bg)
+        kg = self.cg + 1j * (omega * self.bg)
         numerator = kg - self.j2 * w2
         # (c + k_g - J₁ω²)(k_g - J₂ω²) - k_g², written without the k_g² - k_g² cancellation
         det = (self.c - self.j1 * w2) * (kg - self.j2 * w2) - kg * self.j2 * w2
-        if det == 0:
+        if np.ndim(det) == 0 and det == 0:
             raise ZeroDivisionError
-        return self.m0 * numerator / det, self.m0 * kg / det
+        with np.errstate(all="ignore"):
+            return self.m0 * numerator / det, self.m0 * kg / det
 
-    def determinant_is_zero(self, omega: float) -> bool:
+    def determinant_is_zero(self, omega: Any) -> Any:
         """Δ = 0 to round-off (undamped resonance of the two-disk system)."""
-        if self.bg != 0.0:
-            return False
         w2 = omega * omega
         first = (self.c - self.j1 * w2) * (self.cg - self.j2 * w2)
         second = self.cg * self.j2 * w2
-        return abs(first - second) <= 1e-12 * max(abs(first), second)
+        xp = of(first, second, self.bg)
+        flat = abs(first - second) <= 1e-12 * xp.maximum(abs(first), second)
+        return (self.bg == 0.0) & flat if xp is not FLOATS else self.bg == 0.0 and flat
 
-    def untuned(self, omega: float) -> float | None:
-        """|A| of J₁ without the absorber, M₀/|c - J₁ω²| (None: resonance)."""
+    def untuned(self, omega: Any) -> Any:
+        """|A| of J₁ without the absorber, M₀/|c - J₁ω²| (None, or NaN over arrays:
+        resonance)."""
         gap = self.c - self.j1 * omega * omega
-        if abs(gap) <= 1e-12 * self.c:
-            return None
-        return self.m0 / abs(gap)
+        xp = of(gap, self.c)
+        return xp.where(abs(gap) <= 1e-12 * self.c, lambda: xp.missing, lambda: self.m0 / abs(gap))
 
-    def resonances(self) -> tuple[float, float]:
+    def resonances(self) -> tuple[Any, Any]:
         """Roots of Δ = 0: ω⁴ - (a + b + d)·ω² + a·d = 0, a = c/J₁, b = c_g/J₁,
         d = c_g/J₂ [rad/s] (discriminant (a + b - d)² + 4bd > 0)."""
         a, b, d = self.c / self.j1, self.cg / self.j1, self.cg / self.j2
-        high = 0.5 * ((a + b + d) + math.sqrt((a + b - d) ** 2 + 4.0 * b * d))
-        return math.sqrt(a * d / high), math.sqrt(high)
+        xp = of(a, b, d)
+        high = 0.5 * ((a + b + d) + xp.sqrt((a + b - d) ** 2 + 4.0 * b * d))
+        return xp.sqrt(a * d / high), xp.sqrt(high)
 
-    def band(self) -> tuple[float, float]:
+    def band(self) -> tuple[Any, Any]:
         """Where the undamped absorber lowers |A₁| below M₀/|c - J₁ω²|:
         (d - ω²)(a - ω²) < ω²·b/2, between the roots of ω⁴ - (a + d + b/2)ω² + ad."""
         a, b, d = self.c / self.j1, self.cg / self.j1, self.cg / self.j2
+        xp = of(a, b, d)
         s = a + d + 0.5 * b
-        high = 0.5 * (s + math.sqrt((a - d) ** 2 + b * (a + d) + 0.25 * b * b))
-        return math.sqrt(a * d / high), math.sqrt(high)
+        high = 0.5 * (s + xp.sqrt((a - d) ** 2 + b * (a + d) + 0.25 * b * b))
+        return xp.sqrt(a * d / high), xp.sqrt(high)
 
 
 def absorber_scene(a: Absorber) -> AbsorberScene:
@@ -121,26 +129,53 @@ def chain_amplitudes(s: AbsorberScene) -> dict[str, float]:
 
 def absorber_minimum(s: AbsorberScene) -> tuple[float, float] | None:
     """Smallest |A₁| between the two resonances and where [rad, rad/s]: a log grid,
-    then golden section; None when there is no minimum inside (heavy damping)."""
+    then golden section; None when there is no minimum inside (heavy damping). One
+    scene as a block of one (:func:`absorber_minima`)."""
+    depth, where = absorber_minima(s, 1)
+    return None if math.isnan(depth[0]) else (float(depth[0]), float(where[0]))
+
+
+#: Scenes whose grids of |A₁| are evaluated at once (2001 complex values each).
+MINIMUM_CHUNK = 512
+
+
+def absorber_minima(s: AbsorberScene, size: int) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`absorber_minimum` of a block of ``size`` scenes: the depths and their
+    frequencies, NaN where there is no minimum inside."""
+
+    def whole(value: Any) -> np.ndarray:
+        return np.broadcast_to(np.asarray(value, dtype=float), (size,))
+
+    j1, c, j2, cg, bg, m0 = (whole(v) for v in (s.j1, s.c, s.j2, s.cg, s.bg, s.m0))
+    depth, where = np.full(size, np.nan), np.full(size, np.nan)
+    for first in range(0, size, MINIMUM_CHUNK):
+        part = slice(first, first + MINIMUM_CHUNK)
+        scene = AbsorberScene(j1[part], c[part], j2[part], cg[part], bg[part], m0[part], 0.0, False)
+        depth[part], where[part] = _minima(scene)
+    return depth, where
+
+
+def _minima(s: AbsorberScene) -> tuple[np.ndarray, np.ndarray]:
     low, high = s.resonances()
 
-    def value(omega: float) -> float:
-        return abs(s.amplitudes(omega)[0])
+    def value(omega: np.ndarray) -> np.ndarray:
+        return np.abs(s.amplitudes(omega)[0])
 
-    grid = np.geomspace(low, high, 2001)[1:-1]
-    values = [value(float(w)) for w in grid]
-    k = int(np.argmin(values))
-    if k in (0, len(grid) - 1):  # |A₁| falls all the way to a resonance: no notch
-        return None
-    a, b = float(grid[k - 1]), float(grid[k + 1])
+    grid = np.geomspace(low, high, 2001)[1:-1]  # (1999, B)
+    k = np.argmin(value(grid), axis=0)
+    inside = (k > 0) & (k < len(grid) - 1)  # else |A₁| falls all the way to a resonance
+    column = np.arange(len(k))
+    a = grid[np.clip(k - 1, 0, len(grid) - 1), column]
+    b = grid[np.clip(k + 1, 0, len(grid) - 1), column]
     ratio = (math.sqrt(5.0) - 1.0) / 2.0
+    running = inside.copy()
     for _ in range(200):
         x1, x2 = b - ratio * (b - a), a + ratio * (b - a)
-        if value(x1) < value(x2):
-            b = x2
-        else:
-            a = x1
-        if b - a <= 1e-15 * b:
+        left = value(x1) < value(x2)
+        b = np.where(running & left, x2, b)
+        a = np.where(running & ~left, x1, a)
+        running &= ~(b - a <= 1e-15 * b)
+        if not running.any():
             break
-    where = 0.5 * (a + b)
-    return value(where), where
+    at = 0.5 * (a + b)
+    return np.where(inside, value(at), np.nan), np.where(inside, at, np.nan)

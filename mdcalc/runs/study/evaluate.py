@@ -17,13 +17,13 @@ import time
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field
 from itertools import product
-from pathlib import Path
 from typing import Any
 
 from mdcalc.errors import EXIT_BUG, EXIT_INPUT, EXIT_NO_ANSWER, EXIT_OK, InputError
 from mdcalc.input.casefile import CaseText, validate
 from mdcalc.input.model import DECLINED
 from mdcalc.runs.cluster import Mapper, PoolMapper
+from mdcalc.runs.kernel import KernelChunk, LostBlock, lost_block
 from mdcalc.runs.study.spec import Plan
 
 #: Samples per kernel call: 64 Ki samples of a closed form take a few tens of ms.
@@ -55,56 +55,8 @@ class Evaluated:
     note: str = ""
 
 
-class KernelChunk:
-    """The problem's kernel on a block of samples (picklable for a pool or cluster)."""
-
-    def __init__(
-        self,
-        problem: str,
-        path: Path,
-        scene: dict[str, Any],
-        keys: Sequence[str],
-        wanted: Sequence[str],
-    ) -> None:
-        self.problem = problem
-        self.path = str(path)
-        self.scene = scene
-        self.keys = list(keys)
-        self.wanted = list(wanted)
-
-    @classmethod
-    def of(cls, plan: Plan, wanted: Sequence[str]) -> KernelChunk:
-        return cls(plan.problem, plan.case.path, plan.scene_data, plan.keys, wanted)
-
-    def __call__(self, block: Any) -> dict[str, Any] | None:
-        import warnings
-
-        import numpy as np
-
-        from mdcalc.problems import PROBLEMS
-
-        module: Any = PROBLEMS[self.problem].load()
-        model = validate(module.Case, CaseText(Path(self.path), "", copy.deepcopy(self.scene)))
-        grid = {key: np.ascontiguousarray(block[:, j]) for j, key in enumerate(self.keys)}
-        try:
-            with warnings.catch_warnings(), np.errstate(all="ignore"):
-                warnings.simplefilter("ignore", RuntimeWarning)
-                out = module.sweep(model, grid, self.wanted)
-        except (ArithmeticError, ValueError):
-            return None  # the samples go point by point, where each is judged alone
-        if out is None or any(k not in out for k in self.wanted):
-            return None
-        n = len(block)
-        part = {
-            k: np.array(np.broadcast_to(np.asarray(out[k], dtype=float), (n,))) for k in self.wanted
-        }
-        declined = out.get(DECLINED)
-        part[DECLINED] = (
-            np.zeros(n, dtype=bool)
-            if declined is None
-            else np.array(np.broadcast_to(np.asarray(declined, dtype=bool), (n,)))
-        )
-        return part
+def _chunk(plan: Plan, wanted: Sequence[str]) -> KernelChunk:
+    return KernelChunk(plan.problem, plan.case.path, plan.scene_data, plan.keys, wanted)
 
 
 class SampleRunner:
@@ -131,18 +83,6 @@ class SampleRunner:
             (self.path, self.problem, data, self.time_limit, self.alone)
         )
         return code, [float(values.get(k, math.nan)) for k in self.wanted], message
-
-
-@dataclass
-class LostBlock:
-    """A block of samples whose kernel run was lost for good (its worker died past
-    the retries): its samples count as failed."""
-
-    reason: str
-
-
-def lost_block(block: Any, error: BaseException) -> LostBlock:
-    return LostBlock(f"lost on the cluster: {type(error).__name__}: {error}")
 
 
 def lost(row: Any, error: BaseException) -> tuple[int, list[float], str]:
@@ -194,7 +134,7 @@ def _kernel_fits(plan: Plan, samples: Any, wanted: Sequence[str]) -> bool:
             return False
     import numpy as np
 
-    return KernelChunk.of(plan, wanted)(np.array(ends).T) is not None
+    return _chunk(plan, wanted)(np.array(ends).T) is not None
 
 
 def _by_kernel(
@@ -209,7 +149,7 @@ def _by_kernel(
 
     n = len(samples)
     blocks = [samples[i : i + KERNEL_CHUNK] for i in range(0, n, KERNEL_CHUNK)]
-    run = KernelChunk.of(plan, wanted)
+    run = _chunk(plan, wanted)
     parts: Iterable[dict[str, Any] | LostBlock | None]
     if isinstance(mapper, PoolMapper):
         # The first block runs here. A closed form's kernel is faster here than

@@ -1,0 +1,74 @@
+"""A problem's vectorized kernel on a block of samples or grid points, picklable
+so that a process pool or a dask cluster can run it (studies and sweeps), and what
+a block lost for good becomes."""
+
+from __future__ import annotations
+
+import copy
+from collections.abc import Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from mdcalc.input.casefile import CaseText, validate
+from mdcalc.input.model import DECLINED
+
+
+class KernelChunk:
+    """The problem's kernel on a block of samples (picklable for a pool or cluster)."""
+
+    def __init__(
+        self,
+        problem: str,
+        path: Path,
+        scene: dict[str, Any],
+        keys: Sequence[str],
+        wanted: Sequence[str],
+    ) -> None:
+        self.problem = problem
+        self.path = str(path)
+        self.scene = scene
+        self.keys = list(keys)
+        self.wanted = list(wanted)
+
+    def __call__(self, block: Any) -> dict[str, Any] | None:
+        import warnings
+
+        import numpy as np
+
+        from mdcalc.problems import PROBLEMS
+
+        module: Any = PROBLEMS[self.problem].load()
+        model = validate(module.Case, CaseText(Path(self.path), "", copy.deepcopy(self.scene)))
+        grid = {key: np.ascontiguousarray(block[:, j]) for j, key in enumerate(self.keys)}
+        try:
+            with warnings.catch_warnings(), np.errstate(all="ignore"):
+                warnings.simplefilter("ignore", RuntimeWarning)
+                out = module.sweep(model, grid, self.wanted)
+        except (ArithmeticError, ValueError):
+            return None  # the samples go point by point, where each is judged alone
+        if out is None or any(k not in out for k in self.wanted):
+            return None
+        n = len(block)
+        part = {
+            k: np.array(np.broadcast_to(np.asarray(out[k], dtype=float), (n,))) for k in self.wanted
+        }
+        declined = out.get(DECLINED)
+        part[DECLINED] = (
+            np.zeros(n, dtype=bool)
+            if declined is None
+            else np.array(np.broadcast_to(np.asarray(declined, dtype=bool), (n,)))
+        )
+        return part
+
+
+@dataclass
+class LostBlock:
+    """A block of samples whose kernel run was lost for good (its worker died past
+    the retries): its samples count as failed."""
+
+    reason: str
+
+
+def lost_block(block: Any, error: BaseException) -> LostBlock:
+    return LostBlock(f"lost on the cluster: {type(error).__name__}: {error}")
