@@ -285,6 +285,7 @@ def _mode_shapes(
         # an infinite misfit just before it (the first such join wins a tie).
         best = np.full(lam.shape, np.inf)
         where = np.full(lam.shape, -1)
+        chosen_scale = np.ones(lam.shape)
         for join in range(n):
             usable = (right[join] != 0.0) & np.isfinite(left[join])
             scale = left[join] / right[join]
@@ -294,17 +295,25 @@ def _mode_shapes(
             better = rank < best
             best = np.where(better, rank, best)
             where = np.where(better, join, where)
-        theta = np.stack(left, axis=1)
-        springs = np.stack(left_moments, axis=1) if n > 1 else np.zeros(lam.shape)
-        for join in range(n):
-            chosen = (where == join)[:, None, :]
-            scale = left[join] / right[join]
-            joined = np.stack(left[: join + 1] + [scale * v for v in right[join + 1 :]], axis=1)
-            moments = np.stack(
-                left_moments[:join] + [scale * m for m in right_moments[join:]], axis=1
-            )
-            theta = np.where(chosen, joined, theta)
-            springs = np.where(chosen, moments, springs)
+            chosen_scale = np.where(better, scale, chosen_scale)
+        # Mass k comes from the left table up to the join, scaled from the right one
+        # past it; spring k from the left table before the join. No usable join
+        # (where = -1): the left table throughout.
+        whole_left = where < 0
+        theta = np.stack(
+            [
+                np.where(whole_left | (k <= where), left[k], chosen_scale * right[k])
+                for k in range(n)
+            ],
+            axis=1,
+        )
+        springs = np.stack(
+            [
+                np.where(whole_left | (k < where), left_moments[k], chosen_scale * right_moments[k])
+                for k in range(n - 1)
+            ],
+            axis=1,
+        )
         norm = np.abs(theta[:, 0, :])
         for k in range(1, n):
             norm = np.maximum(norm, np.abs(theta[:, k, :]))
