@@ -167,3 +167,23 @@ def test_the_braking_kernel_is_bit_identical_whether_branches_are_skipped_or_ble
     for key in skipped:
         assert np.shape(skipped[key]) == np.shape(blended[key]) == (1200,), key
         np.testing.assert_array_equal(skipped[key], blended[key], err_msg=key)
+
+
+def test_a_heavy_kernel_sweep_runs_in_blocks_on_the_pool_bit_identical(monkeypatch):
+    # A kernel whose first block of points takes long (here: any) sends the other
+    # blocks to the pool, as a study's samples go: the columns and statuses of the
+    # sweep run whole in this process, bit for bit, no-answer points solved alone.
+    from mdcalc.runs import sweep as sweeps
+
+    case = CASES / "mine-hoist" / "seed_1025.toml"
+    varies = ["hoist.rope_stiffness=5e5:1.2e6:25", "loads.load_torque=4e5:1.05e6:20"]
+    plan = sweeps.plan(case, [sweeps.parse_vary(v) for v in varies])
+    wanted = ["mu12_first_swing", "mu23_first_swing_time", "peak_moment_23"]
+    here = sweeps.evaluate(plan, wanted, 1)
+    monkeypatch.setattr(sweeps, "CLUSTER_BLOCK", 97)
+    monkeypatch.setattr(sweeps, "HEAVY_SECONDS", 0.0)
+    pooled = sweeps.evaluate(plan, wanted, 2)
+    assert here.vectorized and pooled.vectorized
+    assert list(pooled.status) == list(here.status) and 3 in set(here.status.tolist())
+    for key in here.keys:
+        assert np.array_equal(here.columns[key], pooled.columns[key], equal_nan=True), key

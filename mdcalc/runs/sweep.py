@@ -360,10 +360,14 @@ def evaluate(
     model = validate(module.Case, sweep.case)
     status = np.zeros(sweep.points, dtype=int)
     messages: list[str] = []
-    if kernel is not None and mapper is not None and not isinstance(mapper, PoolMapper):
-        vectorized = _kernel_on_cluster(sweep, grid, keys, wanted, mapper, status, messages)
+    if kernel is None:
+        vectorized = None
+    elif mapper is not None and not isinstance(mapper, PoolMapper):
+        vectorized = _kernel_in_blocks(sweep, grid, keys, wanted, mapper, status, messages)
     else:
-        vectorized = kernel(model, grid, wanted) if kernel is not None else None
+        vectorized = _kernel_here_or_pooled(
+            sweep, grid, keys, wanted, mapper or PoolMapper(jobs), status, messages
+        )
     todo = np.arange(sweep.points)
     if vectorized is not None and all(k in vectorized for k in wanted):
         for key in wanted:
@@ -404,7 +408,58 @@ def evaluate(
 CLUSTER_BLOCK = 65_536
 
 
-def _kernel_on_cluster(
+def _kernel_here_or_pooled(
+    sweep: Plan,
+    grid: dict[str, Any],
+    keys: list[str],
+    wanted: list[str],
+    pool: PoolMapper,
+    status: Any,
+    messages: list[str],
+) -> dict[str, Any] | None:
+    """The kernel here on the whole grid, or, where its first block of points takes
+    long (a modal solution and its maxima in time) and the pool has more than one
+    job, in blocks on the pool, as a study's samples run. The same numbers either
+    way: each point's are its own."""
+    import time
+
+    from mdcalc.runs.kernel import KernelChunk
+
+    model = validate(_module(sweep.problem).Case, sweep.case)
+    kernel = _module(sweep.problem).sweep
+    if pool.jobs <= 1 or sweep.points <= CLUSTER_BLOCK:
+        return kernel(model, grid, wanted)
+    first = {key: column[:CLUSTER_BLOCK] for key, column in grid.items()}
+    clock = time.perf_counter()
+    head = kernel(model, first, wanted)
+    if head is None or any(key not in head for key in wanted):
+        return head  # the kernel cannot give these: point by point
+    if time.perf_counter() - clock <= HEAVY_SECONDS:
+        return kernel(model, grid, wanted)
+    head.setdefault(DECLINED, False)
+    rest = {key: column[CLUSTER_BLOCK:] for key, column in grid.items()}
+    data = copy.deepcopy(sweep.case.data)
+    data.pop("expect", None)
+    run = KernelChunk(sweep.problem, sweep.case.path, data, keys, wanted)
+    tail = _kernel_in_blocks(sweep, rest, keys, wanted, pool, status, messages, CLUSTER_BLOCK, run)
+    if tail is None:
+        return None
+    return {key: _joined(head[key], tail[key], CLUSTER_BLOCK) for key in [*wanted, DECLINED]}
+
+
+def _joined(head: Any, tail: Any, size: int) -> Any:
+    import numpy as np
+
+    start = np.broadcast_to(np.asarray(head), (size,))
+    return np.concatenate([start.astype(np.asarray(tail).dtype), tail])
+
+
+#: A kernel block of points that takes longer than this here sends the others to
+#: the pool (as for a study's samples).
+HEAVY_SECONDS = 0.2
+
+
+def _kernel_in_blocks(
     sweep: Plan,
     grid: dict[str, Any],
     keys: list[str],
@@ -412,19 +467,23 @@ def _kernel_on_cluster(
     mapper: Any,
     status: Any,
     messages: list[str],
+    offset: int = 0,
+    run: Any = None,
 ) -> dict[str, Any] | None:
-    """The kernel in blocks of points on the cluster's workers, retried where one
-    dies; a block lost past the retries gives its points exit 70 and a message. None
-    where the kernel declines the grid (point by point then)."""
+    """The kernel in blocks of points on the mapper's workers (a cluster's, retried
+    where one dies, or the pool's); a block lost past the retries gives its points
+    exit 70 and a message. None where the kernel declines the grid (point by point
+    then). ``offset``: the grid's first point in the sweep."""
     import numpy as np
 
     from mdcalc.runs.kernel import KernelChunk, LostBlock, lost_block
 
-    data = copy.deepcopy(sweep.case.data)
-    data.pop("expect", None)
+    if run is None:
+        data = copy.deepcopy(sweep.case.data)
+        data.pop("expect", None)
+        run = KernelChunk(sweep.problem, sweep.case.path, data, keys, wanted)
     points = np.column_stack([grid[key] for key in keys])
     blocks = [points[i : i + CLUSTER_BLOCK] for i in range(0, len(points), CLUSTER_BLOCK)]
-    run = KernelChunk(sweep.problem, sweep.case.path, data, keys, wanted)
     columns = {key: np.full(len(points), np.nan) for key in wanted}
     declined = np.zeros(len(points), dtype=bool)
     start = 0
@@ -433,8 +492,9 @@ def _kernel_on_cluster(
         if part is None:
             return None
         if isinstance(part, LostBlock):
-            status[start:end] = EXIT_BUG
-            messages.append(f"{sweep.case.path}: error: points {start} to {end - 1}: {part.reason}")
+            status[offset + start : offset + end] = EXIT_BUG
+            at = f"points {offset + start} to {offset + end - 1}"
+            messages.append(f"{sweep.case.path}: error: {at}: {part.reason}")
         else:
             for key in wanted:
                 columns[key][start:end] = part[key]
