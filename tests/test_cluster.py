@@ -165,7 +165,7 @@ def test_a_kernel_sweep_runs_in_blocks_on_the_cluster_bit_identical(cluster, mon
     from mdcalc.runs import sweep as sweeps
     from mdcalc.runs.cluster import DaskMapper
 
-    monkeypatch.setattr(sweeps, "CLUSTER_BLOCK", 97)
+    monkeypatch.setattr(sweeps, "BLOCK", 97)
     case = CASES / "mine-hoist" / "seed_1025.toml"
     varies = ["hoist.rope_stiffness=5e5:1.2e6:25", "loads.load_torque=4e5:1.05e6:20"]
     plan = sweeps.plan(case, [sweeps.parse_vary(v) for v in varies])

@@ -180,8 +180,8 @@ def test_a_heavy_kernel_sweep_runs_in_blocks_on_the_pool_bit_identical(monkeypat
     plan = sweeps.plan(case, [sweeps.parse_vary(v) for v in varies])
     wanted = ["mu12_first_swing", "mu23_first_swing_time", "peak_moment_23"]
     here = sweeps.evaluate(plan, wanted, 1)
-    monkeypatch.setattr(sweeps, "CLUSTER_BLOCK", 97)
-    monkeypatch.setattr(sweeps, "HEAVY_SECONDS", 0.0)
+    monkeypatch.setattr(sweeps, "BLOCK", 97)
+    monkeypatch.setattr(sweeps, "HEAVY_BLOCK_SECONDS", 0.0)
     pooled = sweeps.evaluate(plan, wanted, 2)
     assert here.vectorized and pooled.vectorized
     assert list(pooled.status) == list(here.status) and 3 in set(here.status.tolist())

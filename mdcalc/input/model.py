@@ -116,6 +116,21 @@ def exactly_one(owner: str, **given: object) -> None:
 DECLINED = "__declined__"
 
 
+def kernel_answer(values: dict[str, Any], declined: Any, size: int) -> dict[str, Any]:
+    """A kernel's answer over a block of ``size`` samples: each value spread over the
+    block as floats, NaN where ``declined`` (the samples to be solved alone), and the
+    ``DECLINED`` mask itself."""
+    import numpy as np
+
+    mask = np.broadcast_to(np.asarray(declined, dtype=bool), (size,))
+    out: dict[str, Any] = {
+        key: np.where(mask, np.nan, np.broadcast_to(np.asarray(value, dtype=float), (size,)))
+        for key, value in values.items()
+    }
+    out[DECLINED] = mask
+    return out
+
+
 def with_values(case: CaseBase, values: dict[str, Any]) -> Any:
     """The case with each key path of ``values`` (``"vehicle.mass"``,
     ``"drive.stage_efficiencies.1"``) set to its value, copied on the way and not

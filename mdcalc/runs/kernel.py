@@ -13,6 +13,13 @@ from typing import Any
 from mdcalc.input.casefile import CaseText, validate
 from mdcalc.input.model import DECLINED
 
+#: Samples or grid points a kernel block holds: 64 Ki of a closed form take a few
+#: tens of ms, of a modal solution with its maxima in time about a second.
+BLOCK = 65_536
+#: A kernel block that takes longer than this in the calling process sends the
+#: other blocks to the process pool (when it has more than one job).
+HEAVY_BLOCK_SECONDS = 0.2
+
 
 class KernelChunk:
     """The problem's kernel on a block of samples (picklable for a pool or cluster)."""

@@ -25,6 +25,7 @@ from mdcalc.errors import EXIT_BUG, EXIT_INPUT, EXIT_NO_ANSWER, EXIT_OK, InputEr
 from mdcalc.input.casefile import CaseText, is_integer_field, read_case, unit_of, validate
 from mdcalc.input.model import DECLINED
 from mdcalc.runs.cluster import PoolMapper
+from mdcalc.runs.kernel import BLOCK, HEAVY_BLOCK_SECONDS
 from mdcalc.runs.runner import problem_of, solve_model
 
 #: A grid larger than this is refused: 10⁷ points of a vectorized problem take
@@ -365,8 +366,9 @@ def evaluate(
     elif mapper is not None and not isinstance(mapper, PoolMapper):
         vectorized = _kernel_in_blocks(sweep, grid, keys, wanted, mapper, status, messages)
     else:
+        pool = mapper if mapper is not None else PoolMapper(jobs)
         vectorized = _kernel_here_or_pooled(
-            sweep, grid, keys, wanted, mapper or PoolMapper(jobs), status, messages
+            sweep, model, grid, keys, wanted, pool, status, messages
         )
     todo = np.arange(sweep.points)
     if vectorized is not None and all(k in vectorized for k in wanted):
@@ -404,12 +406,9 @@ def evaluate(
     return Table(keys + wanted, units, columns, status, messages, vectorized=by_kernel)
 
 
-#: Grid points a kernel block holds on a cluster.
-CLUSTER_BLOCK = 65_536
-
-
 def _kernel_here_or_pooled(
     sweep: Plan,
+    model: Any,
     grid: dict[str, Any],
     keys: list[str],
     wanted: list[str],
@@ -423,28 +422,22 @@ def _kernel_here_or_pooled(
     way: each point's are its own."""
     import time
 
-    from mdcalc.runs.kernel import KernelChunk
-
-    model = validate(_module(sweep.problem).Case, sweep.case)
     kernel = _module(sweep.problem).sweep
-    if pool.jobs <= 1 or sweep.points <= CLUSTER_BLOCK:
+    if pool.jobs <= 1 or sweep.points <= BLOCK:
         return kernel(model, grid, wanted)
-    first = {key: column[:CLUSTER_BLOCK] for key, column in grid.items()}
+    first = {key: column[:BLOCK] for key, column in grid.items()}
     clock = time.perf_counter()
     head = kernel(model, first, wanted)
     if head is None or any(key not in head for key in wanted):
         return head  # the kernel cannot give these: point by point
-    if time.perf_counter() - clock <= HEAVY_SECONDS:
+    if time.perf_counter() - clock <= HEAVY_BLOCK_SECONDS:
         return kernel(model, grid, wanted)
     head.setdefault(DECLINED, False)
-    rest = {key: column[CLUSTER_BLOCK:] for key, column in grid.items()}
-    data = copy.deepcopy(sweep.case.data)
-    data.pop("expect", None)
-    run = KernelChunk(sweep.problem, sweep.case.path, data, keys, wanted)
-    tail = _kernel_in_blocks(sweep, rest, keys, wanted, pool, status, messages, CLUSTER_BLOCK, run)
+    rest = {key: column[BLOCK:] for key, column in grid.items()}
+    tail = _kernel_in_blocks(sweep, rest, keys, wanted, pool, status, messages, BLOCK)
     if tail is None:
         return None
-    return {key: _joined(head[key], tail[key], CLUSTER_BLOCK) for key in [*wanted, DECLINED]}
+    return {key: _joined(head[key], tail[key], BLOCK) for key in [*wanted, DECLINED]}
 
 
 def _joined(head: Any, tail: Any, size: int) -> Any:
@@ -452,11 +445,6 @@ def _joined(head: Any, tail: Any, size: int) -> Any:
 
     start = np.broadcast_to(np.asarray(head), (size,))
     return np.concatenate([start.astype(np.asarray(tail).dtype), tail])
-
-
-#: A kernel block of points that takes longer than this here sends the others to
-#: the pool (as for a study's samples).
-HEAVY_SECONDS = 0.2
 
 
 def _kernel_in_blocks(
@@ -468,7 +456,6 @@ def _kernel_in_blocks(
     status: Any,
     messages: list[str],
     offset: int = 0,
-    run: Any = None,
 ) -> dict[str, Any] | None:
     """The kernel in blocks of points on the mapper's workers (a cluster's, retried
     where one dies, or the pool's); a block lost past the retries gives its points
@@ -478,12 +465,11 @@ def _kernel_in_blocks(
 
     from mdcalc.runs.kernel import KernelChunk, LostBlock, lost_block
 
-    if run is None:
-        data = copy.deepcopy(sweep.case.data)
-        data.pop("expect", None)
-        run = KernelChunk(sweep.problem, sweep.case.path, data, keys, wanted)
+    data = copy.deepcopy(sweep.case.data)
+    data.pop("expect", None)
+    run = KernelChunk(sweep.problem, sweep.case.path, data, keys, wanted)
     points = np.column_stack([grid[key] for key in keys])
-    blocks = [points[i : i + CLUSTER_BLOCK] for i in range(0, len(points), CLUSTER_BLOCK)]
+    blocks = [points[i : i + BLOCK] for i in range(0, len(points), BLOCK)]
     columns = {key: np.full(len(points), np.nan) for key in wanted}
     declined = np.zeros(len(points), dtype=bool)
     start = 0

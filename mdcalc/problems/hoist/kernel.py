@@ -7,7 +7,7 @@ import math
 from collections.abc import Collection
 from typing import Any
 
-from mdcalc.input.model import DECLINED, with_values
+from mdcalc.input.model import kernel_answer, with_values
 from mdcalc.problems.hoist.case import Case
 from mdcalc.problems.hoist.drive import can_start, reduced_inertia, steady, uniform_start
 from mdcalc.problems.hoist.rope import ground_peak, hanging_closed_form
@@ -115,12 +115,7 @@ def sweep(
             "ground_peak_force": peak,
             "ground_dynamic_factor": peak / rope.weight,
         }
-    out = {
-        key: np.where(declined, np.nan, np.broadcast_to(np.asarray(value, dtype=float), (size,)))
-        for key, value in values.items()
-    }
-    out[DECLINED] = declined
-    return out
+    return kernel_answer(values, declined, size)
 
 
 def _value_at(node: Any, parts: list[str]) -> Any:

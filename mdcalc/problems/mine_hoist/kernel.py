@@ -8,7 +8,7 @@ from collections.abc import Collection
 from typing import Any
 
 from mdcalc.core.chain import supremum
-from mdcalc.input.model import DECLINED, with_values
+from mdcalc.input.model import kernel_answer, with_values
 from mdcalc.problems.mine_hoist.case import Case
 from mdcalc.problems.mine_hoist.modal import block_dynamics
 from mdcalc.problems.mine_hoist.scene import reduce_rope, seed_formula_1, stiffnesses_at
@@ -131,6 +131,4 @@ def sweep(
         if dyn.over_horizon is not None:
             values["mu12_horizon"] = dyn.over_horizon.value[:, 0] / r12
             values["mu23_horizon"] = dyn.over_horizon.value[:, 1] / r23
-    out = {key: np.where(declined, np.nan, whole(value)) for key, value in values.items()}
-    out[DECLINED] = declined
-    return out
+    return kernel_answer(values, declined, size)

@@ -5,11 +5,10 @@ scene runs on a block of one (:func:`~.chain.modal_block`, :func:`~.chain.energy
 
 from __future__ import annotations
 
-import math
 from collections.abc import Collection
 from typing import Any
 
-from mdcalc.input.model import DECLINED, with_values
+from mdcalc.input.model import kernel_answer, with_values
 from mdcalc.problems.resonance.case import Case
 from mdcalc.problems.resonance.chain import (
     crank_sum,
@@ -93,9 +92,4 @@ def sweep(
         values[f"measured_frequency_{k + 1}"] = m.speed_rpm * m.order / HZ_TO_RPM
         if m.frequency_hz is not None:
             values[f"stated_speed_{k + 1}"] = HZ_TO_RPM * m.frequency_hz / m.order
-    out = {
-        key: np.where(declined, math.nan, np.broadcast_to(np.asarray(value, dtype=float), (size,)))
-        for key, value in values.items()
-    }
-    out[DECLINED] = declined
-    return out
+    return kernel_answer(values, declined, size)

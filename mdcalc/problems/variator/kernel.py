@@ -5,11 +5,10 @@ floats there, on arrays here) and :func:`~.absorber.absorber_minima`."""
 
 from __future__ import annotations
 
-import math
 from collections.abc import Collection
 from typing import Any
 
-from mdcalc.input.model import DECLINED, with_values
+from mdcalc.input.model import kernel_answer, with_values
 from mdcalc.problems.variator.absorber import absorber_minima, absorber_scene
 from mdcalc.problems.variator.case import Case
 
@@ -79,9 +78,4 @@ def sweep(
             }
         else:
             return None  # some samples undamped, some damped: point by point
-    out = {
-        key: np.where(declined, math.nan, np.broadcast_to(np.asarray(value, dtype=float), (size,)))
-        for key, value in values.items()
-    }
-    out[DECLINED] = declined
-    return out
+    return kernel_answer(values, declined, size)

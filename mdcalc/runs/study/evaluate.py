@@ -23,14 +23,17 @@ from mdcalc.errors import EXIT_BUG, EXIT_INPUT, EXIT_NO_ANSWER, EXIT_OK, InputEr
 from mdcalc.input.casefile import CaseText, validate
 from mdcalc.input.model import DECLINED
 from mdcalc.runs.cluster import Mapper, PoolMapper
-from mdcalc.runs.kernel import KernelChunk, LostBlock, lost_block
+from mdcalc.runs.kernel import (
+    BLOCK,
+    HEAVY_BLOCK_SECONDS,
+    KernelChunk,
+    LostBlock,
+    lost_block,
+)
 from mdcalc.runs.study.spec import Plan
 
-#: Samples per kernel call: 64 Ki samples of a closed form take a few tens of ms.
-KERNEL_CHUNK = 65_536
-#: A kernel block that takes longer than this here sends the other blocks to the
-#: process pool (when it has more than one job).
-HEAVY_BLOCK_SECONDS = 0.2
+#: Samples per kernel call.
+KERNEL_CHUNK = BLOCK
 #: Inputs up to this many have their 2^k corners validated before the kernel runs.
 MAX_CORNER_INPUTS = 12
 #: Reasons kept per kind of failure (the rest are counted).
