@@ -307,7 +307,7 @@ RATE_SCENES = [
     ("mine-hoist", "studies/mine_hoist_rope.toml", "hoist.rope_stiffness"),
     ("resonance", "resonance/inline_six.toml", "chain.stiffnesses.6"),
     ("variator", "variator/two_disk_absorber.toml", "absorber.inertia"),
-    ("mechanism", "mechanism/crank_press.toml", "motion.start_speed"),
+    ("mechanism", "studies/mechanism_inertia.toml", "inertia.value"),
     ("acceleration", "acceleration/lecture.toml", "vehicle.mass"),
 ]
 

@@ -285,6 +285,7 @@ def test_sweep_points_take_the_limit(cli, monkeypatch):
         vary = ("--vary", "motion.steps_per_revolution=16:32:2")
         return cli("sweep", case, *vary, "--jobs", "1", "--time-limit", limit)
 
+    monkeypatch.setattr(mechanism, "sweep", None)  # the points one by one, each budgeted
     result = sweep("0")
     assert result.exit_code == 0, result.stderr
     monkeypatch.setattr(mechanism, "solve", never_ends)

@@ -11,10 +11,11 @@ import re
 from collections.abc import Iterable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, TypeVar
+from typing import Any, TypeVar, get_args, get_origin
 
 import tomli
 from pydantic import BaseModel, ValidationError
+from pydantic.fields import FieldInfo
 
 from mdcalc.errors import InputError, Problem
 from mdcalc.input.files import read_regular, write_atomic
@@ -245,6 +246,14 @@ def _walk(model: type[BaseModel], loc: tuple[str | int, ...]) -> tuple[Any, Any]
         if isinstance(part, int):
             continue
         fields = getattr(current, "model_fields", None)
+        if fields is None and info is not None and get_origin(info.annotation) is dict:
+            # a key of a table of named numbers (``parameters.a``): the value's type,
+            # the table's description
+            value, description = get_args(info.annotation)[1], info.description
+            info = FieldInfo.from_annotation(value)
+            info.description = description
+            current = _inner_model(value)
+            continue
         if fields is None or part not in fields:
             return current, None  # an unknown key: ``current`` is where it was written
         holder, info = current, fields[part]
@@ -267,6 +276,27 @@ def field_info(model: type[BaseModel], loc: tuple[str | int, ...]) -> Any:
     """The pydantic FieldInfo of the key at ``loc`` (its bounds, its description);
     None for a key the model does not have."""
     return _walk(model, loc)[1]
+
+
+def missing_name(
+    model: type[BaseModel], data: dict[str, Any], loc: tuple[str | int, ...]
+) -> str | None:
+    """Why ``loc`` cannot be drawn or varied when it names an entry the case's table of
+    named numbers (``parameters.a``) does not hold: a new name would change nothing.
+    None otherwise."""
+    if len(loc) < 2:
+        return None
+    table = _walk(model, loc[:-1])[1]
+    if table is None or get_origin(table.annotation) is not dict:
+        return None
+    node: Any = data
+    for part in loc[:-1]:
+        node = node.get(part, {}) if isinstance(node, dict) else {}
+    if loc[-1] in node:
+        return None
+    held = ", ".join(str(k) for k in node) or "none"
+    where = ".".join(str(p) for p in loc[:-1])
+    return f"the case has no {where} {loc[-1]!r} (it has: {held}); a new name changes nothing"
 
 
 def unit_of(model: type[BaseModel], loc: tuple[str | int, ...]) -> str:

@@ -22,6 +22,7 @@ import math
 import unicodedata
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
+from typing import Any
 
 MAX_LENGTH = 2000
 MAX_NODES = 500
@@ -105,6 +106,8 @@ class Expression:
     variables: tuple[str, ...]
     names: frozenset[str]  # the variables and parameters it actually uses
     _run: Compiled
+    _tree: ast.expr
+    _parameters: Mapping[str, float]
 
     def __call__(self, **values: float) -> float:
         """Evaluate; raises ArithmeticError or ValueError for a domain error
@@ -123,6 +126,16 @@ class Expression:
 
     def uses(self, name: str) -> bool:
         return name in self.names
+
+    def on_arrays(self) -> Callable[[dict[str, Any]], Any]:
+        """The same formula over numpy arrays, for a block of scenes: called with the
+        variables and any parameter given as an array (``{"phi": ..., "a": ...}``, the
+        rest keep their values) and ``"_bad"``, a bool array the evaluation marks
+        where this formula's scalar form would raise (a domain error, a division by
+        zero, an overflow at any node; a branch ``a if c else b`` does not take
+        counts only where it is not taken)."""
+        compiler = _Compiler(self.variables, dict(self._parameters), set(), arrays=True)
+        return compiler.compile(self._tree)
 
 
 def parse(text: str, variables: tuple[str, ...], parameters: Env | None = None) -> Expression:
@@ -146,7 +159,7 @@ def parse(text: str, variables: tuple[str, ...], parameters: Env | None = None) 
     used: set[str] = set()
     compiler = _Compiler(variables, parameters, used)
     run = compiler.compile(tree.body)
-    return Expression(text, variables, frozenset(used), run)
+    return Expression(text, variables, frozenset(used), run, tree.body, parameters)
 
 
 def check_name(name: str, variables: tuple[str, ...] = ()) -> None:
@@ -167,11 +180,61 @@ def check_name(name: str, variables: tuple[str, ...] = ()) -> None:
         raise ExpressionError(f"parameter name {name!r} is taken by a function or variable")
 
 
+def _array_functions() -> dict[str, Callable[..., Any]]:
+    """numpy's forms of :data:`FUNCTIONS` (same names, same meaning)."""
+    import functools
+
+    import numpy as np
+
+    return {
+        "sin": np.sin,
+        "cos": np.cos,
+        "tan": np.tan,
+        "asin": np.arcsin,
+        "acos": np.arccos,
+        "atan": np.arctan,
+        "atan2": np.arctan2,
+        "sinh": np.sinh,
+        "cosh": np.cosh,
+        "tanh": np.tanh,
+        "exp": np.exp,
+        "log": np.log,
+        "log10": np.log10,
+        "sqrt": np.sqrt,
+        "abs": np.abs,
+        "hypot": np.hypot,
+        "floor": np.floor,
+        "ceil": np.ceil,
+        "sign": np.sign,
+        "min": lambda *a: functools.reduce(np.minimum, a),
+        "max": lambda *a: functools.reduce(np.maximum, a),
+        "clip": lambda x, low, high: np.minimum(np.maximum(x, low), high),
+    }
+
+
+def _mark(env: Any, value: Any) -> Any:
+    """Array mode: mark in ``env["_bad"]`` the rows where ``value`` is not finite."""
+    import numpy as np
+
+    env["_bad"] |= ~np.isfinite(value)
+    return value
+
+
 class _Compiler:
-    def __init__(self, variables: tuple[str, ...], parameters: dict[str, float], used: set[str]):
+    """Compiles a checked tree into closures over floats, or (``arrays``) over numpy
+    arrays: the same checks, node by node, either way."""
+
+    def __init__(
+        self,
+        variables: tuple[str, ...],
+        parameters: dict[str, float],
+        used: set[str],
+        arrays: bool = False,
+    ):
         self.variables = variables
         self.parameters = parameters
         self.used = used
+        self.arrays = arrays
 
     def compile(self, node: ast.AST) -> Compiled:
         method = getattr(self, f"_{type(node).__name__}", None)
@@ -202,6 +265,8 @@ class _Compiler:
         if name in self.parameters:
             self.used.add(name)
             value = float(self.parameters[name])
+            if self.arrays:  # a study may draw a parameter
+                return lambda env: env.get(name, value)
             return lambda env: value
         if name in CONSTANTS:
             constant = CONSTANTS[name]
@@ -230,6 +295,18 @@ class _Compiler:
             if exponent is not None and abs(exponent) > MAX_EXPONENT:
                 raise ExpressionError(f"exponent {exponent:g} is beyond ±{MAX_EXPONENT:g}")
         left, right = self.compile(node.left), self.compile(node.right)
+        if self.arrays:  # numpy's ufuncs, also on constant operands (0.0 % 0.0 is nan)
+            import numpy as np
+
+            ufunc = {
+                ast.Add: np.add,
+                ast.Sub: np.subtract,
+                ast.Mult: np.multiply,
+                ast.Div: np.divide,
+                ast.Mod: np.mod,
+                ast.Pow: np.power,
+            }[type(node.op)]
+            return lambda env: _mark(env, ufunc(left(env), right(env)))
 
         def binary(env: Env) -> float:
             value = operation(left(env), right(env))
@@ -247,6 +324,15 @@ class _Compiler:
             if test is None:
                 raise ExpressionError("only < <= > >= comparisons are allowed")
             tests.append(test)
+        if self.arrays:
+            import numpy as np
+
+            def compare_arrays(env: Any) -> Any:
+                values = [p(env) for p in parts]
+                held = [t(a, b) for t, a, b in zip(tests, values, values[1:], strict=False)]
+                return np.logical_and.reduce(np.broadcast_arrays(*held)).astype(float)
+
+            return compare_arrays
 
         def compare(env: Env) -> float:
             values = [p(env) for p in parts]
@@ -260,6 +346,20 @@ class _Compiler:
             self.compile(node.body),
             self.compile(node.orelse),
         )
+        if self.arrays:
+            import numpy as np
+
+            def choose(env: Any) -> Any:
+                taken = test(env) != 0.0
+                bad = env["_bad"]
+                env["_bad"] = np.zeros_like(bad)
+                first = body(env)
+                env["_bad"], first_bad = np.zeros_like(bad), env["_bad"]
+                second = other(env)
+                env["_bad"] = bad | np.where(taken, first_bad, env["_bad"])
+                return np.where(taken, first, second)
+
+            return choose
         return lambda env: body(env) if test(env) != 0.0 else other(env)
 
     def _Call(self, node: ast.Call) -> Compiled:
@@ -279,6 +379,9 @@ class _Compiler:
             count = str(low) if low == high else f"{low} to {high}"
             raise ExpressionError(f"{name}() takes {count} arguments, got {len(node.args)}")
         args = [self.compile(a) for a in node.args]
+        if self.arrays:
+            array_function = _array_functions()[name]
+            return lambda env: _mark(env, array_function(*(a(env) for a in args)))
 
         def call(env: Env) -> float:
             value = float(function(*(a(env) for a in args)))

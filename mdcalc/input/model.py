@@ -146,6 +146,8 @@ def _with_value(node: Any, kind: Any, parts: list[str], value: Any) -> Any:
     if not parts:
         return value
     head, rest = parts[0], parts[1:]
+    if isinstance(node, dict):  # a table of named numbers (``parameters.a``)
+        return {**node, head: _with_value(node.get(head), None, rest, value)}
     if isinstance(node, list):
         i = int(head)
         return [*node[:i], _with_value(node[i], None, rest, value), *node[i + 1 :]]

@@ -22,7 +22,14 @@ from typing import Any
 
 from mdcalc.core.budget import DEFAULT_SECONDS
 from mdcalc.errors import EXIT_BUG, EXIT_INPUT, EXIT_NO_ANSWER, EXIT_OK, InputError, Problem
-from mdcalc.input.casefile import CaseText, is_integer_field, read_case, unit_of, validate
+from mdcalc.input.casefile import (
+    CaseText,
+    is_integer_field,
+    missing_name,
+    read_case,
+    unit_of,
+    validate,
+)
 from mdcalc.input.model import DECLINED
 from mdcalc.runs.cluster import PoolMapper
 from mdcalc.runs.kernel import BLOCK, HEAVY_BLOCK_SECONDS
@@ -171,6 +178,9 @@ def plan(path: Path, varies: Sequence[Vary]) -> Plan:
             raise InputError(
                 f"--vary {vary.key}", [Problem(f"{vary.key} is not a number in {path}")]
             )
+        unknown = missing_name(module.Case, case.data, vary.loc)
+        if unknown is not None:
+            raise InputError(f"--vary {vary.key}", [Problem(unknown)])
         values: list[float | int] = list(vary.values())
         if is_integer_field(module.Case, vary.loc):
             rounded: list[float | int] = [round(v) for v in values]

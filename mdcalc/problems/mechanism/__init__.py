@@ -31,6 +31,8 @@ Its files:
 - ``reference.py``: The ODE reference: the energy equation integrated over the angle, with a
   budget and a dense solution.
 - ``fluctuation.py``: The speed fluctuation over a period: coefficient of unevenness, extremes.
+- ``kernel.py``: The vectorized kernel of sweeps and studies: the reference, the
+  fluctuation and Kovylin's (5) over a block of scenes.
 - ``solve.py``: The solver: the Methods, and the result.
 - ``report.py``: The report: the sections a mechanism scene needs.
 - ``charts.py``: The charts of ``--plot``: speed and torque against the angle (data only).
@@ -40,7 +42,8 @@ from __future__ import annotations
 
 from mdcalc.problems.mechanism.case import Case, template
 from mdcalc.problems.mechanism.charts import charts
+from mdcalc.problems.mechanism.kernel import ODE_REFERENCED, SWEEP_KEYS, sweep
 from mdcalc.problems.mechanism.report import report
 from mdcalc.problems.mechanism.solve import solve
 
-__all__ = ["Case", "solve", "report", "template", "charts"]
+__all__ = ["Case", "solve", "report", "template", "charts", "sweep", "SWEEP_KEYS", "ODE_REFERENCED"]

@@ -4,7 +4,9 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
+from mdcalc.core.xp import of
 from mdcalc.problems.mechanism.scene import Scene
 
 #: Largest number of halvings of one Kovylin step (2⁻³⁰ of the user's step).
@@ -34,32 +36,46 @@ class Path:
     refined: int = 0  # steps that had to be halved
 
 
-def kovylin_step(scene: Scene, phi: float, omega: float, dphi: float) -> float | None:
-    """ω_k after one step by (5), or from rest by the quadratic; None when the step
-    is not acceptable (denominator or ω_k not positive, increment too large)."""
+def kovylin_step(scene: Scene, phi: Any, omega: Any, dphi: Any) -> Any:
+    """ω_k after one step by (5), or from rest by the quadratic; missing (None for
+    a float, NaN in an array) when the step is not acceptable (denominator or ω_k
+    not positive, increment too large). Floats or arrays over a block of scenes."""
+    xp = of(phi, omega, dphi)
     phi_k = phi + dphi
     i_i, i_k = scene.inertia(phi), scene.inertia(phi_k)
     m_mean = 0.5 * (scene.torque(phi, omega) + scene.torque(phi_k, omega))
     c = scene.slope(phi_k, omega) if scene.depends_on_speed else 0.0
-    if omega == 0.0:
+
+    def from_rest() -> Any:
         # (1) with M′ + ½·C·ω_k over the step: I_k·ω_k² - C·Δφ·ω_k - 2·M′·Δφ = 0
         disc = (c * dphi) ** 2 + 8.0 * i_k * m_mean * dphi
-        if m_mean <= 0.0 or disc <= 0.0:
-            return None
-        return (c * dphi + math.sqrt(disc)) / (2.0 * i_k)
-    denominator = 2.0 * i_k * omega - c * dphi
-    if not denominator > 0.0:
-        return None
-    delta = (2.0 * m_mean * dphi + (i_i - i_k) * omega * omega) / denominator
-    if abs(delta) > MAX_INCREMENT * omega or omega + delta <= 0.0:
-        return None
-    return omega + delta
+        return xp.where(
+            (m_mean > 0.0) & (disc > 0.0),
+            lambda: (c * dphi + xp.sqrt(disc)) / (2.0 * i_k),
+            lambda: xp.missing,
+        )
+
+    def moving() -> Any:
+        denominator = 2.0 * i_k * omega - c * dphi
+
+        def stepped() -> Any:
+            delta = (2.0 * m_mean * dphi + (i_i - i_k) * omega * omega) / denominator
+            return xp.where(
+                (xp.abs(delta) > MAX_INCREMENT * omega) | (omega + delta <= 0.0),
+                lambda: xp.missing,
+                lambda: omega + delta,
+            )
+
+        return xp.where(denominator > 0.0, stepped, lambda: xp.missing)
+
+    return xp.where(omega == 0.0, from_rest, moving)
 
 
-def energy_step(scene: Scene, phi: float, omega: float, dphi: float) -> float | None:
+def energy_step(scene: Scene, phi: Any, omega: Any, dphi: Any) -> Any:
     """ω_k from (1) with the torque of (4) but without (3): the root of
-    I_k·ω_k² - C·Δφ·ω_k - (I_i·ω_i² + 2·M′·Δφ - C·Δφ·ω_i) = 0; None without a
+    I_k·ω_k² - C·Δφ·ω_k - (I_i·ω_i² + 2·M′·Δφ - C·Δφ·ω_i) = 0; missing without a
     positive root."""
+    xp = of(phi, omega, dphi)
     phi_k = phi + dphi
     i_i, i_k = scene.inertia(phi), scene.inertia(phi_k)
     m_mean = 0.5 * (scene.torque(phi, omega) + scene.torque(phi_k, omega))
@@ -67,12 +83,14 @@ def energy_step(scene: Scene, phi: float, omega: float, dphi: float) -> float | 
     b = c * dphi
     free = i_i * omega * omega + 2.0 * m_mean * dphi - b * omega
     disc = b * b + 4.0 * i_k * free
-    if disc < 0.0:
-        return None
-    root = math.sqrt(disc)
-    # the larger root, without cancellation when b > 0
-    value = (b + root) / (2.0 * i_k) if b >= 0.0 else 2.0 * free / (root - b)
-    return value if value > 0.0 else None
+
+    def root() -> Any:
+        r = xp.sqrt(disc)
+        # the larger root, without cancellation when b > 0
+        value = xp.where(b >= 0.0, lambda: (b + r) / (2.0 * i_k), lambda: 2.0 * free / (r - b))
+        return xp.where(value > 0.0, lambda: value, lambda: xp.missing)
+
+    return xp.where(disc < 0.0, lambda: xp.missing, root)
 
 
 def kovylin(scene: Scene, steps_per_revolution: int, quadratic: bool = False) -> Path:

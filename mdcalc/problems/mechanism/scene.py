@@ -6,7 +6,9 @@ from __future__ import annotations
 import bisect
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import Any
 
+from mdcalc.core.xp import of
 from mdcalc.input.expr import parse
 from mdcalc.problems.mechanism.case import TWO_PI, VARIABLES, Case, _flat, _start_speed
 
@@ -31,9 +33,12 @@ class Periodic:
 
 @dataclass(frozen=True)
 class Scene:
-    torque: Callable[[float, float], float]  # M(φ, ω) [N·m]
-    slope: Callable[[float, float], float]  # ∂M/∂ω [N·m·s/rad]
-    inertia: Callable[[float], float]  # I(φ) [kg·m²]
+    """One scene (floats), or a block of them (the kernel's: the functions take and
+    give arrays, NaN where a formula cannot be evaluated)."""
+
+    torque: Callable[[Any, Any], Any]  # M(φ, ω) [N·m]
+    slope: Callable[[Any, Any], Any]  # ∂M/∂ω [N·m·s/rad]
+    inertia: Callable[[Any], Any]  # I(φ) [kg·m²]
     depends_on_speed: bool
     start_angle: float
     start_speed: float
@@ -51,12 +56,18 @@ class Scene:
         return self.start_angle + self.span
 
 
-def _central_slope(torque: Callable[[float, float], float]) -> Callable[[float, float], float]:
-    def slope(phi: float, omega: float) -> float:
-        h = 1e-6 * max(abs(omega), 1e-3)
-        if omega - h < 0.0:  # forward difference at rest: ω < 0 may be outside M's domain
-            return (torque(phi, omega + h) - torque(phi, omega)) / h
-        return (torque(phi, omega + h) - torque(phi, omega - h)) / (2.0 * h)
+def _central_slope(torque: Callable[[Any, Any], Any]) -> Callable[[Any, Any], Any]:
+    """∂M/∂ω by a central difference (forward at rest: ω < 0 may be outside M's
+    domain); floats or arrays."""
+
+    def slope(phi: Any, omega: Any) -> Any:
+        xp = of(phi, omega)
+        h = 1e-6 * xp.maximum(xp.abs(omega), 1e-3)
+        return xp.where(
+            omega - h < 0.0,
+            lambda: (torque(phi, omega + h) - torque(phi, omega)) / h,
+            lambda: (torque(phi, omega + h) - torque(phi, omega - h)) / (2.0 * h),
+        )
 
     return slope
 

@@ -162,6 +162,11 @@ def solve(case: Case) -> Result:
         "Methods: Kovylin's step against the energy ODE", "mechanism", quantities, methods
     )
     result.path = paths.get(n)
+    if result.path is None and n not in paths:  # the row did not run (a study's sample)
+        try:
+            result.path = kovylin(scene, n)
+        except ArithmeticError:  # a stall of (5), or a formula not evaluable: no path
+            result.path = None
     if stiff:
         result.notes.append(
             Note(

@@ -19,7 +19,14 @@ from typing import Any, Literal
 from pydantic import Field, model_validator
 
 from mdcalc.errors import InputError, Problem
-from mdcalc.input.casefile import CaseText, field_info, is_integer_field, unit_of, validate
+from mdcalc.input.casefile import (
+    CaseText,
+    field_info,
+    is_integer_field,
+    missing_name,
+    unit_of,
+    validate,
+)
 from mdcalc.input.model import MAGNITUDE_LIMIT, CaseBase, CaseModel
 
 #: Samples of one study (its Monte Carlo draws, or its Saltelli design): 10⁷ samples
@@ -385,6 +392,10 @@ def _input(
 
     if info is None or not takes_numbers(info.annotation) or isinstance(base, bool | dict | list):
         fail(f"{key} is not a number of this problem's scene; a study draws numeric keys")
+        return None
+    unknown = missing_name(model, scene, loc)
+    if unknown is not None:
+        fail(unknown)
         return None
     if is_integer_field(model, loc):
         fail(f"{key} takes whole numbers; a study draws continuous values only")

@@ -1,0 +1,582 @@
+"""The vectorized kernel of ``mdcalc sweep`` and ``mdcalc study`` for a mechanism
+whose torque is a formula and whose inertia is a constant or a formula: every
+numeric result of the scene over a block of scenes.
+
+The reference is the single scene's: the energy equation dE/dφ = M, dt/dφ = 1/ω
+integrated by DOP853 at rtol 10⁻¹¹ with the same tolerances, start from rest and
+floor (:func:`~.reference.reference`), here stepped for every row at once by
+:func:`mdcalc.core.block_ode.dop853_block`. The speed fluctuation takes the extremes of
+ω over the last revolution from DOP853's continuous extension, each sampled at nine
+points a step and refined by golden section, as the single scene refines its
+2048-point grid. Kovylin's (5) runs as :func:`~.kovylin.kovylin` does, node by node
+with each row's own halving, on the same step formula.
+
+A row the single scene would run otherwise is marked ``DECLINED``, to be solved
+alone: a stiff scene (Radau), a stall, a formula that cannot be evaluated along the
+run, more than the explicit budget of evaluations. A case with a table of M or I
+runs point by point (None).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Collection
+from dataclasses import dataclass
+from typing import Any
+
+from mdcalc.core.units import rpm_to_rad_s
+from mdcalc.input.expr import parse
+from mdcalc.input.model import kernel_answer, with_values
+from mdcalc.problems.mechanism.case import TWO_PI, VARIABLES, Case
+from mdcalc.problems.mechanism.kovylin import MAX_REFINEMENT, kovylin_step
+from mdcalc.problems.mechanism.scene import Scene, _central_slope
+
+#: Keys ``mdcalc sweep`` and ``mdcalc study`` may vary in the vectorized form; and
+#: ``parameters.NAME`` for every parameter the case names.
+SWEEP_KEYS = {
+    "inertia.value": "I",
+    "motion.start_angle": "φ₀",
+    "motion.start_speed": "ω₀",
+    "motion.start_speed_rpm": "ω₀",
+    "motion.revolutions": "revolutions",
+    "motion.steps_per_revolution": "n (Kovylin's)",
+    "parameters.*": "a parameter of the formulas",
+}
+
+#: The reference is an ODE run at rtol 10⁻¹¹ (DOP853, as the single scene's). The
+#: kernel takes the single run's steps up to rounding, but where the error estimate
+#: is itself at rounding level (a kink of M each revolution, as crank_press.toml's
+#: max(sin φ, 0); E near zero before a stall) the two runs step differently and
+#: differ by the reference's own error: measured 5.6·10⁻⁷ of ω against the exact
+#: √(2(E₀ - c·2π)/I) in cases/extreme/mechanism_near_stall.toml, 2·10⁻⁷ on the
+#: crank press. Kovylin's worst error is measured against that reference.
+ODE_REFERENCED: dict[str, float | tuple[float, float]] = {
+    key: 1e-6
+    for key in (
+        "final_speed",
+        "final_time",
+        "mean_speed",
+        "max_speed",
+        "min_speed",
+        "mean_speed_revolution",
+        "fluctuation",
+    )
+}
+#: A relative error of ω measured against the reference: uncertain by the
+#: reference's own error, 10⁻⁶ absolute (with 10⁻⁶ relative).
+ODE_REFERENCED["kovylin_worst_error"] = (1e-6, 1e-6)
+
+#: Points of each step's continuous extension where the extremes of ω are sought.
+SAMPLES_A_STEP = 8
+#: Golden-section iterations of an extreme, as the single scene's.
+GOLDEN_ITERATIONS = 60
+
+FLUCTUATION_KEYS = ("max_speed", "min_speed", "mean_speed_revolution", "fluctuation")
+KOVYLIN_KEYS = ("kovylin_final_speed", "kovylin_worst_error")
+
+
+class _Formulas:
+    """M(φ, ω) and I(φ) of a block: the case's formulas over arrays, each row with
+    its own parameters; NaN where the single scene's formula would raise."""
+
+    def __init__(self, case: Case, parameters: dict[str, Any], inertia: Any) -> None:
+        self.torque = parse(case.torque.formula or "", VARIABLES, case.parameters)
+        self.inertia_formula = (
+            None
+            if case.inertia.formula is None
+            else parse(case.inertia.formula, ("phi",), case.parameters).on_arrays()
+        )
+        self.torque_arrays = self.torque.on_arrays()
+        self.parameters = parameters
+        self.inertia_value = inertia
+
+    def scene(self, rows: Any, base: Any) -> Scene:
+        """The block's scene over the rows ``rows`` (None: all of them)."""
+        import numpy as np
+
+        own = {k: v if rows is None else v[rows] for k, v in self.parameters.items()}
+
+        def evaluate(run: Any, values: dict[str, Any]) -> Any:
+            shape = np.broadcast_shapes(*(np.shape(v) for v in [*values.values(), *own.values()]))
+            env = {**own, **values, "_bad": np.zeros(shape, dtype=bool)}
+            out = np.broadcast_to(run(env), shape)
+            return np.where(env["_bad"], np.nan, out)
+
+        def torque(phi: Any, omega: Any) -> Any:
+            return evaluate(self.torque_arrays, {"phi": phi, "omega": omega})
+
+        inertia_formula = self.inertia_formula
+        if inertia_formula is None:
+            value = self.inertia_value
+            constant = value if rows is None or np.ndim(value) == 0 else value[rows]
+
+            def inertia(phi: Any) -> Any:
+                return constant
+
+        else:
+
+            def inertia(phi: Any) -> Any:
+                i = evaluate(inertia_formula, {"phi": phi})
+                return np.where(i > 0.0, i, np.nan)
+
+        depends = self.torque.uses("omega")
+        slope = _central_slope(torque) if depends else (lambda phi, omega: 0.0)
+        return Scene(
+            torque,
+            slope,
+            inertia,
+            depends,
+            base.start_angle,
+            base.start_speed,
+            base.revolutions,
+            base.steps,
+            None,
+        )
+
+
+def sweep(
+    case: Case, grid: dict[str, Any], wanted: Collection[str] | None = None
+) -> dict[str, Any] | None:
+    """Every numeric result of the block's scenes (numpy), as the single scene's
+    reference and Kovylin give them. None for a table of M or I, a key this form
+    does not know, or one that switches an alternative."""
+    import numpy as np
+
+    if case.torque.formula is None or (case.inertia.value is None and case.inertia.formula is None):
+        return None
+    parameters: dict[str, Any] = {}
+    others: dict[str, Any] = {}
+    for key, column in grid.items():
+        head, _, name = key.partition(".")
+        if head == "parameters" and name in case.parameters:
+            parameters[name] = np.asarray(column, dtype=float)
+        elif key in SWEEP_KEYS and _given(case, key):
+            others[key] = np.asarray(column, dtype=float)
+        else:
+            return None
+    size = max([np.size(v) for v in grid.values()] + [1])
+    c = with_values(case, others)
+    motion = c.motion
+
+    def spread(value: Any) -> Any:
+        return np.array(np.broadcast_to(np.asarray(value, dtype=float), (size,)))
+
+    parameters = {k: spread(v) for k, v in parameters.items()}
+    start = spread(motion.start_angle)
+    steps: Any = np.broadcast_to(np.asarray(motion.steps_per_revolution), (size,))
+    # the block's numbers (arrays) in the single scene's fields; its functions come
+    # from _Formulas.scene
+    base = Scene(
+        lambda phi, omega: 0.0,
+        lambda phi, omega: 0.0,
+        lambda phi: 1.0,
+        False,
+        start,
+        spread(
+            motion.start_speed
+            if motion.start_speed is not None
+            else rpm_to_rad_s(motion.start_speed_rpm)
+        ),
+        spread(motion.revolutions),
+        steps,
+        None,
+    )
+    formulas = _Formulas(c, parameters, c.inertia.value)
+    want = set(wanted) if wanted is not None else None
+    with np.errstate(all="ignore"):
+        kovylin = want is None or bool(want & set(KOVYLIN_KEYS))
+        fluctuation = want is None or bool(want & set(FLUCTUATION_KEYS))
+        run = _reference(formulas, base, fluctuation, kovylin)
+        values = run.values
+        declined = run.declined
+        if kovylin:
+            speeds, failed = _kovylin(formulas, base)
+            count, _ = _node_grid(base)
+            final = speeds[count, np.arange(size)]
+            values["kovylin_final_speed"] = np.where(failed, np.nan, final)
+            ref = run.node_speeds
+            error = np.where(
+                ref > 0.0, np.abs(speeds - ref) / ref, np.where(np.isnan(ref), np.nan, 0.0)
+            )
+            worst = np.fmax.reduce(error, axis=0)
+            values["kovylin_worst_error"] = np.where(failed, np.nan, worst)
+    return kernel_answer(values, declined, size)
+
+
+def _given(case: Case, key: str) -> bool:
+    section, name = key.split(".")
+    return getattr(getattr(case, section), name) is not None
+
+
+@dataclass
+class _Run:
+    values: dict[str, Any]
+    declined: Any
+    node_speeds: Any  # ω of the reference at Kovylin's nodes (nodes, rows), if asked
+
+
+def _reference(formulas: _Formulas, base: Any, fluctuation: bool, nodes: bool) -> _Run:
+    """The single scene's reference (:func:`~.reference.reference` with DOP853 at
+    its rtol, and :func:`~.reference.stiffness_of`) over the block."""
+    import numpy as np
+
+    from mdcalc.core.block_ode import dop853_block
+    from mdcalc.problems.mechanism.solve import EXPLICIT_BUDGET, REFERENCE_RTOL, STIFFNESS_LIMIT
+
+    scene = formulas.scene(None, base)
+    n = np.size(base.start_angle)
+    phi0, omega0 = base.start_angle, base.start_speed
+    span = base.revolutions * TWO_PI
+    end = phi0 + span
+    i0 = np.broadcast_to(scene.inertia(phi0), (n,))
+    m0 = scene.torque(phi0, omega0)
+    declined = ~np.isfinite(m0) | ~np.isfinite(i0)
+    if scene.depends_on_speed:
+        declined |= _stiffness(scene, base, i0, m0, span) > STIFFNESS_LIMIT
+    e0 = 0.5 * i0 * omega0**2
+    e_scale = np.maximum(np.maximum(e0, np.abs(m0) * span), 1e-300)
+    # From rest E ≈ M₀·ε, t ≈ √(2·I₀·ε/M₀): start a hair after φ₀.
+    rest = e0 == 0.0
+    declined |= rest & ~(m0 > 0.0)
+    eps = 1e-12 * span
+    start = np.where(rest, phi0 + eps, phi0)
+    e_start = np.where(rest, m0 * eps, e0)
+    t_offset = np.where(rest, np.sqrt(2.0 * i0 * eps / m0), 0.0)
+    floor = 1e-13 * e_scale
+    bad = np.zeros(n, dtype=bool)
+
+    def rhs(rows: Any, phi: Any, y: Any) -> Any:
+        part = formulas.scene(rows, base)
+        energy = np.maximum(y[:, 0], floor[rows])
+        omega = np.sqrt(2.0 * energy / part.inertia(phi))
+        torque = part.torque(phi, omega)
+        bad[rows] |= ~np.isfinite(torque) | ~np.isfinite(omega)
+        return np.stack([torque, 1.0 / omega], axis=1)
+
+    def stop(rows: Any, y_old: Any, y_new: Any) -> Any:  # E reaches the floor: a stall
+        g_old, g_new = y_old[:, 0] - floor[rows], y_new[:, 0] - floor[rows]
+        return (g_old >= 0.0) & (g_new <= 0.0)
+
+    t_scale = span / np.maximum(omega0, np.sqrt(2.0 * e_scale / i0))
+    atol = np.stack([e_scale, t_scale], axis=1) * REFERENCE_RTOL * 1e-3
+    extremes = _Extremes(formulas, base, end - TWO_PI, end, start) if fluctuation else None
+    at_nodes = _Nodes(base, start, formulas) if nodes else None
+    y0 = np.stack([e_start, t_offset], axis=1)
+    live = ~declined
+    y0 = np.where(live[:, None], y0, np.array([1.0, 0.0]))  # a harmless start, ignored
+
+    def on_step(step: Any) -> None:
+        if at_nodes is not None:
+            at_nodes.see(step)
+        if extremes is not None:
+            extremes.see(step)
+
+    out = dop853_block(
+        rhs,
+        np.where(live, start, end),
+        y0,
+        end,
+        rtol=REFERENCE_RTOL,
+        atol=atol,
+        stop=stop,
+        on_step=on_step,
+        budget=EXPLICIT_BUDGET,
+    )
+    declined |= ~out.done | bad
+    e_end, t_end = out.y[:, 0], out.y[:, 1]
+    final_speed = np.sqrt(2.0 * e_end / np.broadcast_to(scene.inertia(end), (n,)))
+    values: dict[str, Any] = {
+        "start_angle": phi0,
+        "start_speed": omega0,
+        "start_inertia": i0,
+        "start_torque": m0,
+        "end_angle": end,
+        "steps_per_revolution": base.steps,
+        "final_speed": final_speed,
+        "final_time": t_end,
+        "mean_speed": span / t_end,
+    }
+    if extremes is not None:
+        values |= extremes.values(t_end)
+    declined |= ~np.isfinite(final_speed) | ~np.isfinite(t_end)
+    return _Run(values, declined, None if at_nodes is None else at_nodes.speeds)
+
+
+def _stiffness(scene: Scene, base: Any, i0: Any, m0: Any, span: Any) -> Any:
+    """:func:`~.reference.stiffness_of` over the block (NaN candidates skipped)."""
+    import numpy as np
+
+    gained = np.sqrt(2.0 * np.abs(m0) * span / i0)
+    worst = np.zeros(np.shape(i0))
+    for omega in (base.start_speed, 0.1 * gained, gained):
+        c = scene.slope(base.start_angle, omega)
+        ratio = np.abs(c) / (i0 * omega) * span
+        worst = np.where((omega > 0.0) & np.isfinite(ratio), np.maximum(worst, ratio), worst)
+    return worst
+
+
+class _Nodes:
+    """ω of the reference at Kovylin's nodes φ₀ + k·Δφ, from each step's extension."""
+
+    def __init__(self, base: Any, start: Any, formulas: _Formulas) -> None:
+        import numpy as np
+
+        self.base, self.formulas, self.start = base, formulas, start
+        self.count, self.dphi = _node_grid(base)
+        self.speeds = np.full((int(self.count.max()) + 1, np.size(start)), np.nan)
+        self.speeds[0] = base.start_speed
+        self.next = np.ones(np.size(start), dtype=np.int64)
+
+    def see(self, step: Any) -> None:
+        import numpy as np
+
+        rows, base = step.rows, self.base
+        while True:
+            k = self.next[rows]
+            last = k == self.count[rows]
+            angle = np.where(
+                last,
+                base.start_angle[rows] + base.revolutions[rows] * TWO_PI,
+                base.start_angle[rows] + k * self.dphi[rows],
+            )
+            due = (k <= self.count[rows]) & (angle <= step.t_new)
+            if not due.any():
+                return
+            at = np.flatnonzero(due)
+            r = rows[at]
+            self.speeds[k[at], r] = _speed(
+                self.formulas, base, self.start, r, step.dense().take(at), angle[at]
+            )
+            self.next[r] += 1
+
+
+def _speed(formulas: _Formulas, base: Any, start: Any, rows: Any, dense: Any, angle: Any) -> Any:
+    """ω = √(2E/I) of the reference at ``angle`` (shape (m,) or (k, m)), as the
+    single scene's ``speed_at``: ω₀ up to its (shifted) start."""
+    import numpy as np
+
+    energy = np.maximum(dense.at(angle, 0), 0.0)
+    omega = np.sqrt(2.0 * energy / formulas.scene(rows, base).inertia(angle))
+    return np.where(angle <= start[rows], base.start_speed[rows], omega)
+
+
+def _node_grid(base: Any) -> tuple[Any, Any]:
+    """Kovylin's node count over the run and its step, as :func:`~.kovylin.kovylin`."""
+    import numpy as np
+
+    count = np.maximum(1, np.ceil(base.revolutions * base.steps - 1e-9)).astype(np.int64)
+    return count, base.revolutions * TWO_PI / count
+
+
+def _kovylin(formulas: _Formulas, base: Any) -> tuple[Any, Any]:
+    """ω at Kovylin's nodes by (5), each row stepping as :func:`~.kovylin._advance`
+    does (a step halved where (5) cannot take it, grown back after); and the rows
+    that stall (no step down to 2⁻³⁰ of Δφ)."""
+    import numpy as np
+
+    count, dphi = _node_grid(base)
+    n = np.size(dphi)
+    phi, omega = base.start_angle.copy(), base.start_speed.copy()
+    speeds = np.full((int(count.max()) + 1, n), np.nan)
+    speeds[0] = omega
+    failed = np.zeros(n, dtype=bool)
+    for k in range(int(count.max())):
+        moving = (k < count) & ~failed
+        end = phi + dphi
+        h = dphi.copy()
+        inner = moving.copy()
+        while inner.any():
+            rows = np.flatnonzero(inner)
+            hh = np.minimum(h[rows], end[rows] - phi[rows])
+            nxt = kovylin_step(formulas.scene(rows, base), phi[rows], omega[rows], hh)
+            ok = np.isfinite(nxt)
+            stall = ~ok & (hh < dphi[rows] * 2.0**-MAX_REFINEMENT)
+            failed[rows[stall]] = True
+            g, hg = rows[ok], hh[ok]
+            phi[g] = np.where(end[g] - phi[g] > hg * (1 + 1e-12), phi[g] + hg, end[g])
+            omega[g] = nxt[ok]
+            h[g] = np.minimum(2.0 * hg, dphi[g])
+            halve = ~ok & ~stall
+            h[rows[halve]] = 0.5 * hh[halve]
+            inner = moving & ~failed & (phi < end)
+        phi = np.where(moving, end, phi)
+        speeds[k + 1] = np.where(moving & ~failed, omega, np.nan)
+    return speeds, failed
+
+
+class _Best:
+    """The running extreme of ω (``sign`` +1 the largest, -1 the smallest) over the
+    sampled points, with the step that holds it and that step's neighbours."""
+
+    def __init__(self, n: int, sign: float) -> None:
+        import numpy as np
+
+        self.sign = sign
+        self.value = np.full(n, np.nan)
+        self.angle = np.full(n, np.nan)
+        self.width = np.full(n, np.nan)
+        self.pieces: dict[str, Any] = {}
+        self.waits = np.zeros(n, dtype=bool)  # for the step after the best one
+
+    def _store(self, which: str, rows: Any, dense: Any) -> None:
+        _keep(self.pieces, which, self.value.size, rows, dense)
+
+    def fill_next(self, rows: Any, here: Any) -> None:
+        import numpy as np
+
+        waiting = np.flatnonzero(self.waits[rows])
+        if waiting.size:
+            self._store("next", rows[waiting], here.take(waiting))
+            self.waits[rows[waiting]] = False
+
+    def offer(self, rows: Any, omega: Any, angles: Any, width: Any, here: Any, last: Any) -> None:
+        import numpy as np
+
+        index = np.argmax(self.sign * omega, axis=0)
+        m = np.arange(rows.size)
+        candidate = omega[index, m]
+        current = self.value[rows]
+        better = np.isnan(current) | (self.sign * candidate > self.sign * current)
+        at = np.flatnonzero(better)
+        if not at.size:
+            return
+        r = rows[at]
+        self.value[r], self.angle[r] = candidate[at], angles[index[at], at]
+        self.width[r] = width[at]
+        self._store("best", r, here.take(at))
+        if "last" in last.pieces:
+            self._store("previous", r, last.pieces["last"].take(r))
+        self.waits[r] = True
+
+    def around(self, rows: Any, angle: Any) -> Any:
+        """The extension that holds ``angle`` of each row: the best step's, or a
+        neighbour's just outside it."""
+        import numpy as np
+
+        from mdcalc.core.block_ode import Dense
+
+        best = self.pieces["best"].take(rows)
+        chosen = best
+        for which, outside in (
+            ("previous", angle < best.t_old),
+            ("next", angle > best.t_old + best.h),
+        ):
+            if which not in self.pieces:
+                continue
+            other = self.pieces[which].take(rows)
+            use = outside & np.isfinite(other.h)
+            chosen = Dense(
+                np.where(use, other.t_old, chosen.t_old),
+                np.where(use, other.h, chosen.h),
+                np.where(use[:, None], other.y_old, chosen.y_old),
+                np.where(use[None, :, None], other.F, chosen.F),
+            )
+        return chosen
+
+
+def _keep(pieces: dict[str, Any], which: str, n: int, rows: Any, dense: Any) -> None:
+    """Keep ``dense`` (energy only) as ``pieces[which]`` of the rows ``rows`` of n."""
+    import numpy as np
+
+    from mdcalc.core.block_ode import Dense
+
+    if which not in pieces:
+        pieces[which] = Dense(
+            np.full(n, np.nan),
+            np.full(n, np.nan),
+            np.full((n, 1), np.nan),
+            np.full((7, n, 1), np.nan),
+        )
+    kept = pieces[which]
+    kept.t_old[rows], kept.h[rows] = dense.t_old, dense.h
+    kept.y_old[rows], kept.F[:, rows] = dense.y_old, dense.F
+
+
+class _Last:
+    """The last accepted step's extension of each row (energy only)."""
+
+    def __init__(self, n: int) -> None:
+        self.n = n
+        self.pieces: dict[str, Any] = {}
+
+    def put(self, rows: Any, dense: Any) -> None:
+        _keep(self.pieces, "last", self.n, rows, dense)
+
+
+def _energy_only(dense: Any) -> Any:
+    from mdcalc.core.block_ode import Dense
+
+    return Dense(dense.t_old, dense.h, dense.y_old[:, :1], dense.F[:, :, :1])
+
+
+class _Extremes:
+    """The largest and smallest ω over [first, end] and t at ``first``, from the
+    steps' continuous extensions: sampled at nine points a step, then refined by
+    golden section on the best step and its neighbours, as the single scene refines
+    its 2048-point grid on its dense solution."""
+
+    def __init__(self, formulas: _Formulas, base: Any, first: Any, end: Any, start: Any) -> None:
+        import numpy as np
+
+        n = np.size(first)
+        self.formulas, self.base = formulas, base
+        self.first, self.end, self.start = first, end, start
+        self.has = first >= base.start_angle - 1e-9
+        self.t_first = np.where(first <= start, 0.0, np.nan)
+        self.best = {sign: _Best(n, sign) for sign in (1.0, -1.0)}
+        self.last = _Last(n)
+
+    def see(self, step: Any) -> None:
+        import numpy as np
+
+        rows = step.rows
+        inside = self.has[rows] & (step.t_new > self.first[rows])
+        if not inside.any():
+            return
+        at = np.flatnonzero(inside)
+        r = rows[at]
+        dense = step.dense().take(at)
+        crossing = (step.t_old[at] <= self.first[r]) & (self.first[r] > self.start[r])
+        if crossing.any():
+            c = np.flatnonzero(crossing)
+            self.t_first[r[c]] = dense.take(c).at(self.first[r[c]], 1)
+        low = np.maximum(step.t_old[at], self.first[r])
+        high = step.t_new[at]
+        width = (high - low) / SAMPLES_A_STEP
+        angles = low + width * np.arange(SAMPLES_A_STEP + 1)[:, None]  # (9, m)
+        angles[-1] = high
+        omega = _speed(self.formulas, self.base, self.start, r, dense, angles)
+        here = _energy_only(dense)
+        for best in self.best.values():
+            best.fill_next(r, here)
+            best.offer(r, omega, angles, width, here, self.last)
+        self.last.put(r, here)
+
+    def values(self, t_end: Any) -> dict[str, Any]:
+        import numpy as np
+
+        from mdcalc.core.search import golden_maximum
+
+        n = np.size(self.first)
+        rows = np.flatnonzero(self.has & np.isfinite(self.best[1.0].value))
+        out: dict[str, Any] = {}
+        if not rows.size:
+            nothing = np.full(n, np.nan)
+            return dict.fromkeys(FLUCTUATION_KEYS, nothing)
+        for key, best in (("max_speed", self.best[1.0]), ("min_speed", self.best[-1.0])):
+            sign = best.sign
+            width = best.width[rows]
+            low = np.maximum(best.angle[rows] - width, self.first[rows])
+            high = np.minimum(best.angle[rows] + width, self.end[rows])
+
+            def f(angle: Any, best: _Best = best, sign: float = sign) -> Any:
+                dense = best.around(rows, angle)
+                return sign * _speed(self.formulas, self.base, self.start, rows, dense, angle)
+
+            refined = golden_maximum(f, low, high, GOLDEN_ITERATIONS)
+            result = np.full(n, np.nan)
+            result[rows] = sign * np.maximum(f(refined), sign * best.value[rows])
+            out[key] = result
+        mean = np.where(self.has, TWO_PI / (t_end - self.t_first), np.nan)
+        out["mean_speed_revolution"] = mean
+        out["fluctuation"] = (out["max_speed"] - out["min_speed"]) / mean
+        return out
