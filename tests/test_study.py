@@ -598,3 +598,28 @@ def test_reference_alone_keeps_the_scenes_own_results():
     assert code == 0 and values["final_speed"] == report.results()["final_speed"].value
     full = report.results()["kovylin_final_speed"].value
     assert values["kovylin_final_speed"] == full and methods.REFERENCE_ONLY is False
+
+
+def test_a_study_draws_a_formula_parameter_and_refuses_a_name_the_case_lacks(tmp_path):
+    # parameters.a of M = a - b·ω drawn through the kernel: the end speed rises with
+    # the stall torque a (a by-hand bound: ω_end < a/b, the no-load speed); a name
+    # the case's [parameters] does not hold would change nothing: exit 2, no traceback.
+    import json
+
+    study = CASES / "studies" / "mechanism_motor_torque.toml"
+    text = study.read_text(encoding="utf-8").split("[expect]")[0]
+    good = tmp_path / "good.toml"
+    good.write_text(text.replace("samples = 1024", "samples = 64"), encoding="utf-8")
+    done = run_script("study", good, "--json", "--out", tmp_path / "s.csv")
+    assert done.returncode == 0, done.stderr
+    rows = list(csv.DictReader((tmp_path / "s.csv").open(encoding="utf-8")))
+    pairs = sorted((float(r["parameters.a"]), float(r["final_speed [rad/s]"])) for r in rows)
+    assert all(w < a / 2.0 for a, w in pairs)
+    assert all(w1 < w2 for (_, w1), (_, w2) in zip(pairs, pairs[1:], strict=False))
+    assert "vectorized kernel" in json.loads(done.stdout)["how"]
+    bad = tmp_path / "bad.toml"
+    bad.write_text(text.replace('"parameters.a"', '"parameters.zz"'), encoding="utf-8")
+    refused = run_script("study", bad)
+    assert refused.returncode == 2
+    assert "parameters.zz" in refused.stderr and "it has: a, b" in refused.stderr
+    assert "Traceback" not in refused.stderr
