@@ -23,13 +23,21 @@ from mdcalc.problems.resonance.chain import (
 from mdcalc.problems.resonance.report import HZ_TO_RPM, MAX_MODES_SHOWN, TWO_PI
 
 #: Keys ``mdcalc sweep`` and ``mdcalc study`` may vary in the vectorized form (N: any
-#: list index). The Mathieu points are not here: their reference is an ODE run.
+#: list index).
 SWEEP_KEYS = {
     "chain.inertias.N": "Jᵢ",
     "chain.stiffnesses.N": "cᵢ",
     "chain.damping.N": "ξᵢ",
     "resonance.harmonic_torque": "M_k",
+    "mathieu.damping": "c of the Mathieu equation",
+    "mathieu.points.N.N": "a or q of a Mathieu point",
 }
+
+#: The Floquet radii's reference is a DOP853 run at rtol 10⁻¹², atol 10⁻¹⁵; the block
+#: runs the same method and control and agrees within 10⁻⁹ relative, or within the
+#: run's absolute tolerance where damping near critical leaves a radius of 10⁻¹¹
+#: (cases/extreme/resonance_mathieu_critical_damping.toml: 3·10⁻¹⁷ apart).
+ODE_REFERENCED = {f"floquet_radius_{k + 1}": (1e-9, 1e-15) for k in range(8)}
 
 
 def sweep(
@@ -46,50 +54,91 @@ def sweep(
         pattern = ".".join("N" if p.isdigit() else p for p in key.split("."))
         if pattern not in SWEEP_KEYS:
             return None
-    if case.chain is None or (case.mathieu is not None and case.mathieu.points):
+    if any(key.startswith("chain.") for key in grid) and case.chain is None:
         return None
     if any(key.startswith("resonance.") for key in grid) and case.resonance is None:
         return None
-    if any(key.startswith("chain.damping.") for key in grid) and case.chain.damping is None:
+    points = case.mathieu is not None and bool(case.mathieu.points)
+    if any(key.startswith("mathieu.") for key in grid) and not points:
+        return None
+    if case.chain is None and not points:
+        return None
+    if (
+        case.chain is not None
+        and any(key.startswith("chain.damping.") for key in grid)
+        and case.chain.damping is None
+    ):
         return None
     arrays = with_values(case, {key: np.asarray(v, dtype=float) for key, v in grid.items()})
     size = max([np.size(v) for v in grid.values()] + [1])
-    section = arrays.chain
     values: dict[str, Any] = {}
+    declined = np.zeros(size, dtype=bool)
     with np.errstate(all="ignore"):
-        md = modal_block(section, size)
-        declined = ~np.all(np.isfinite(md.frequencies), axis=1)
-        for j in range(min(md.frequencies.shape[1], MAX_MODES_SHOWN)):
-            values[f"frequency_{j + 1}"] = md.frequencies[:, j] / TWO_PI
-        r = arrays.resonance
-        if r is not None:
-            mode = r.mode - 1
-            beta = md.frequencies[:, mode]
-            f = beta / TWO_PI
-            values["resonance_frequency"] = f
-            values["critical_speed_rpm"] = HZ_TO_RPM * f / r.order
-            shapes = md.shapes[:, mode, :]
-            if section.cranks is not None:
-                values["geometric_sum"] = np.abs(geometric_sums(section, shapes, r.order))
-                values["algebraic_sum"] = crank_sum(section, shapes)
-            if r.harmonic_torque is not None and section.damping is not None:
-                damping = whole(section.damping, size)
-                work = dissipation(damping, shapes)
-                values["modal_damping"] = work
-                declined |= undamped_mode(damping, work)
-                amp = energy_block(section, md, mode, r.order, r.harmonic_torque, damping)
-                exact = forced_block(
-                    section, md, mode, r.order, r.harmonic_torque, beta, damping, size
-                )
-                declined |= amp.singular | exact.singular
-                values |= {
-                    "amplitude": amp.reference_amplitude,
-                    "amplitude_exact": exact.reference_amplitude,
-                    "max_shaft_torque": amp.max_shaft_torque,
-                    "max_shaft_torque_exact": exact.max_shaft_torque,
-                }
+        if arrays.chain is not None:
+            declined = _chain(arrays, size, values)
+        if points and (wanted is None or any(k.startswith("floquet_") for k in wanted)):
+            declined = declined | _floquet(arrays.mathieu, size, values)
     for k, m in enumerate(case.measured or []):
         values[f"measured_frequency_{k + 1}"] = m.speed_rpm * m.order / HZ_TO_RPM
         if m.frequency_hz is not None:
             values[f"stated_speed_{k + 1}"] = HZ_TO_RPM * m.frequency_hz / m.order
     return kernel_answer(values, declined, size)
+
+
+def _floquet(m: Any, size: int, values: dict[str, Any]) -> Any:
+    """ρ = max |μ| of every Mathieu point over the block, as the single scene's
+    reference (DOP853 at rtol 10⁻¹², the determinant by Liouville where spoiled); the
+    rows whose run fails are declined."""
+    import numpy as np
+
+    from mdcalc.problems.resonance.mathieu import floquet_block, liouville, spectral_radius
+
+    def spread(value: Any) -> Any:
+        return np.broadcast_to(np.asarray(value, dtype=float), (size,))
+
+    columns = [(spread(a), spread(q)) for a, q in m.points]
+    a = np.concatenate([col[0] for col in columns])
+    q = np.concatenate([col[1] for col in columns])
+    c = np.tile(spread(m.damping), len(columns))
+    trace, det = floquet_block(a, q, c, 1e-12)
+    radius = spectral_radius(trace, liouville(det, c)).reshape(len(columns), size)
+    for k in range(len(columns)):
+        values[f"floquet_radius_{k + 1}"] = radius[k]
+    return ~np.all(np.isfinite(radius), axis=0)
+
+
+def _chain(arrays: Any, size: int, values: dict[str, Any]) -> Any:
+    """The chain's results over the block into ``values``; the rows declined."""
+    import numpy as np
+
+    section = arrays.chain
+    md = modal_block(section, size)
+    declined = ~np.all(np.isfinite(md.frequencies), axis=1)
+    for j in range(min(md.frequencies.shape[1], MAX_MODES_SHOWN)):
+        values[f"frequency_{j + 1}"] = md.frequencies[:, j] / TWO_PI
+    r = arrays.resonance
+    if r is not None:
+        mode = r.mode - 1
+        beta = md.frequencies[:, mode]
+        f = beta / TWO_PI
+        values["resonance_frequency"] = f
+        values["critical_speed_rpm"] = HZ_TO_RPM * f / r.order
+        shapes = md.shapes[:, mode, :]
+        if section.cranks is not None:
+            values["geometric_sum"] = np.abs(geometric_sums(section, shapes, r.order))
+            values["algebraic_sum"] = crank_sum(section, shapes)
+        if r.harmonic_torque is not None and section.damping is not None:
+            damping = whole(section.damping, size)
+            work = dissipation(damping, shapes)
+            values["modal_damping"] = work
+            declined |= undamped_mode(damping, work)
+            amp = energy_block(section, md, mode, r.order, r.harmonic_torque, damping)
+            exact = forced_block(section, md, mode, r.order, r.harmonic_torque, beta, damping, size)
+            declined |= amp.singular | exact.singular
+            values |= {
+                "amplitude": amp.reference_amplitude,
+                "amplitude_exact": exact.reference_amplitude,
+                "max_shaft_torque": amp.max_shaft_torque,
+                "max_shaft_torque_exact": exact.max_shaft_torque,
+            }
+    return declined

@@ -5,6 +5,8 @@ from __future__ import annotations
 import math
 from typing import Any
 
+from mdcalc.core.xp import of
+
 #: A Floquet verdict within this of the boundary |trace| = 1 + det is "boundary".
 BOUNDARY = 1e-9
 
@@ -52,20 +54,54 @@ def monodromy_ode(a: float, q: float, c: float, rtol: float) -> tuple[float, flo
     return float(x1 + v2), float(x1 * v2 - x2 * v1)
 
 
-def liouville(det: float, c: float) -> float:
+def floquet_block(a: Any, q: Any, c: Any, rtol: float) -> tuple[Any, Any]:
+    """Trace and determinant of the period-π map for a block of (a, q, c) (arrays of
+    one shape): :func:`monodromy_ode`'s DOP853 at its rtol and atol, both columns of
+    every row stepped at once by :func:`mdcalc.core.block_ode.dop853_block`. NaN
+    where a row's run fails (its single scene then runs alone)."""
+    import numpy as np
+
+    from mdcalc.core.block_ode import dop853_block
+
+    a, q, c = np.broadcast_arrays(*(np.asarray(v, dtype=float).ravel() for v in (a, q, c)))
+    n = a.size
+    # rows 0..n-1 start at (1, 0), rows n..2n-1 at (0, 1)
+    aa, qq, cc = (np.concatenate([v, v]) for v in (a, q, c))
+
+    def rhs(rows: Any, t: Any, y: Any) -> Any:
+        x, v = y[:, 0], y[:, 1]
+        return np.stack([v, -cc[rows] * v - (aa[rows] - 2.0 * qq[rows] * np.cos(2.0 * t)) * x], 1)
+
+    start = np.zeros((2 * n, 2))
+    start[:n, 0] = 1.0
+    start[n:, 1] = 1.0
+    run = dop853_block(
+        rhs, np.zeros(2 * n), start, math.pi, rtol=rtol, atol=rtol * 1e-3, budget=10**6
+    )
+    ends = np.where(run.done[:, None], run.y, np.nan)
+    (x1, v1), (x2, v2) = ends[:n].T, ends[n:].T
+    return x1 + v2, x1 * v2 - x2 * v1
+
+
+def liouville(det: Any, c: Any) -> Any:
     """The determinant to use: the computed one (its error goes with the trace's,
     which matters where the multipliers nearly coincide), unless cancellation has
-    spoiled it (multipliers far apart); then e^(-cπ), exact by Liouville."""
-    exact = math.exp(-c * math.pi)
-    return det if abs(det - exact) <= 1e-6 * exact else exact
+    spoiled it (multipliers far apart); then e^(-cπ), exact by Liouville. Floats or
+    arrays."""
+    xp = of(det, c)
+    exact = xp.exp(-c * math.pi)
+    return xp.where(xp.abs(det - exact) <= 1e-6 * exact, lambda: det, lambda: exact)
 
 
-def spectral_radius(trace: float, det: float) -> float:
-    """Largest |μ| of μ² - trace·μ + det = 0."""
+def spectral_radius(trace: Any, det: Any) -> Any:
+    """Largest |μ| of μ² - trace·μ + det = 0; floats or arrays."""
+    xp = of(trace, det)
     disc = trace * trace - 4.0 * det
-    if disc < 0.0:
-        return math.sqrt(max(det, 0.0))
-    return (abs(trace) + math.sqrt(disc)) / 2.0
+    return xp.where(
+        disc < 0.0,
+        lambda: xp.sqrt(xp.maximum(det, 0.0)),
+        lambda: (xp.abs(trace) + xp.sqrt(disc)) / 2.0,
+    )
 
 
 def verdict(trace: float, c: float) -> str:
