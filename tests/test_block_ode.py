@@ -101,7 +101,7 @@ def test_stop_and_failure_are_per_row():
         np.full(5, 5.0),
         rtol=1e-9,
         atol=1e-12,
-        stop=lambda rows, old, new: (old[:, 0] >= 0.0) & (new[:, 0] <= 0.0),
+        stop=lambda step: (step.y_old[:, 0] >= 0.0) & (step.y_new[:, 0] <= 0.0),
     )
     assert run.stopped.tolist() == [True, True, True, False, False]
     assert run.failed.tolist() == [False, False, False, True, False]

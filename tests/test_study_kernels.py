@@ -33,7 +33,7 @@ from tests.test_sweep_kernels import CASE_FILES, tolerance
 from tests.test_sweep_kernels import _held as held
 
 #: The problems whose kernel covers every numeric result key (issue 31, item 1).
-EVERY_KEY = {"clutch", "mine-hoist", "hoist", "resonance", "variator", "mechanism"}
+EVERY_KEY = {"clutch", "mine-hoist", "hoist", "resonance", "variator", "mechanism", "acceleration"}
 SAMPLES = 50
 
 

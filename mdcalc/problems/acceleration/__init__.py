@@ -32,6 +32,8 @@ Its files:
   of the accelerations).
 - ``runs.py``: The runs through the gears and shifts: the lecture's method, piecewise closed
   forms, the ODE reference.
+- ``kernel.py``: The vectorized kernel of sweeps and studies: the plan, the lecture and the
+  ODE reference over a block of cars.
 - ``solve.py``: The solver: the Methods, and the result.
 - ``report.py``: The report: the sections an acceleration scene needs.
 - ``charts.py``: The charts of ``--plot``: speed against time and the traction diagram (data
@@ -42,7 +44,8 @@ from __future__ import annotations
 
 from mdcalc.problems.acceleration.case import Case, template
 from mdcalc.problems.acceleration.charts import charts
+from mdcalc.problems.acceleration.kernel import ODE_REFERENCED, SWEEP_KEYS, sweep
 from mdcalc.problems.acceleration.report import report
 from mdcalc.problems.acceleration.solve import solve
 
-__all__ = ["Case", "solve", "report", "template", "charts"]
+__all__ = ["Case", "solve", "report", "template", "charts", "sweep", "SWEEP_KEYS", "ODE_REFERENCED"]

@@ -6,6 +6,7 @@ from __future__ import annotations
 import bisect
 import math
 from dataclasses import dataclass
+from typing import Any
 
 
 @dataclass(frozen=True)
@@ -41,8 +42,13 @@ class EngineCurve:
             return math.inf
         return (b + math.sqrt(disc)) / (2.0 * c) * self.rated_speed
 
-    def torque(self, omega: float) -> float:
-        """M_e(ω) [N·m]; a table is interpolated linearly and held at its ends."""
+    def torque(self, omega: Any) -> Any:
+        """M_e(ω) [N·m]; a table is interpolated linearly and held at its ends.
+        ``omega`` (and the rated torque) may be numpy arrays over a block of scenes."""
+        if self.is_table and not isinstance(omega, float | int):
+            import numpy as np
+
+            return np.interp(omega, self.speeds, self.torques)
         if self.is_table:
             s, m = self.speeds, self.torques
             if omega <= s[0]:

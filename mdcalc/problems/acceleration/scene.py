@@ -1,11 +1,14 @@
 """The scene: the car, its gears and resistances; traction, adhesion limit and
-acceleration in a gear."""
+acceleration in a gear. Its numbers are floats for one scene, or numpy arrays over a
+block of scenes (the study kernel's): each method is written once for both."""
 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 from mdcalc.core.motion import constant_force_phase
+from mdcalc.core.xp import of
 from mdcalc.problems.acceleration.case import Case, engine_curve, engine_speeds
 from mdcalc.problems.acceleration.engine import EngineCurve
 
@@ -51,10 +54,12 @@ class Scene:
         """ψ·m·g + k·v² [N]."""
         return self.psi * self.mass * self.g + self.drag * v * v
 
-    def engine_omega(self, gear: int, v: float, slipping: bool) -> float:
+    def engine_omega(self, gear: int, v: Any, slipping: Any) -> Any:
         """The engine speed that drives: held at the launch speed while the clutch
         slips, else the one the road speed gives in the gear [rad/s]."""
-        return self.launch if slipping else self.engine_speed(gear, v)
+        return of(v, slipping).where(
+            slipping, lambda: self.launch, lambda: self.engine_speed(gear, v)
+        )
 
     def engine_force(self, gear: int, v: float, slipping: bool) -> float:
         """(7.35) with the engine curve: M_e·U_i·U_K·η/r [N]."""
@@ -73,8 +78,10 @@ class Scene:
         s = self.transfer / self.delta_free
         return self.phi * (self.axle_load - s * resistance) / (1.0 - s * self.phi)
 
-    def delta(self, gear: int, slipping: bool) -> float:
-        return self.delta_free if slipping else self.deltas[gear]
+    def delta(self, gear: int, slipping: Any) -> Any:
+        return of(slipping, self.deltas[gear]).where(
+            slipping, lambda: self.delta_free, lambda: self.deltas[gear]
+        )
 
     def engine_acceleration(self, gear: int, v: float, slipping: bool) -> float:
         """(F_t - R)/(δ·m): what the engine gives if the tyres pass it."""
@@ -88,26 +95,31 @@ class Scene:
         more than the acceleration at which the front wheels lift:
         m·a·h/L = m·g - N_0."""
         a = (self.adhesion_force(v) - self.resistance(v)) / (self.delta_free * self.mass)
-        if self.transfer > 0.0:
-            a = min(a, (self.mass * self.g - self.axle_load) / (self.mass * self.transfer))
-        return a
+        xp = of(a, self.transfer)
+        return xp.where(
+            self.transfer > 0.0,
+            lambda: xp.minimum(
+                a, (self.mass * self.g - self.axle_load) / (self.mass * self.transfer)
+            ),
+            lambda: a,
+        )
 
-    def adhesion_limited(self, gear: int, v: float, slipping: bool) -> bool:
+    def adhesion_limited(self, gear: int, v: Any, slipping: Any) -> Any:
         if self.phi is None:
             return False
         return self.adhesion_acceleration(v) < self.engine_acceleration(gear, v, slipping)
 
-    def acceleration(self, gear: int, v: float, slipping: bool) -> float:
+    def acceleration(self, gear: int, v: Any, slipping: Any) -> Any:
         a = self.engine_acceleration(gear, v, slipping)
         if self.phi is None:
             return a
-        return min(a, self.adhesion_acceleration(v))
+        return of(a).minimum(a, self.adhesion_acceleration(v))
 
-    def engine_speed_at(self, gear: int, v: float) -> float:
+    def engine_speed_at(self, gear: int, v: Any) -> Any:
         """The engine's actual speed: held at the launch speed while the clutch slips."""
-        return max(self.engine_speed(gear, v), self.launch)
+        return of(v).maximum(self.engine_speed(gear, v), self.launch)
 
-    def slipping_at(self, gear: int, v: float) -> bool:
+    def slipping_at(self, gear: int, v: Any) -> Any:
         """The clutch slips while the road speed gives less than the launch engine speed."""
         return self.engine_speed(gear, v) < self.launch
 
@@ -115,7 +127,7 @@ class Scene:
         """R/(δ_0·m): the deceleration with no traction, the clutch open [m/s²]."""
         return self.resistance(v) / (self.delta_free * self.mass)
 
-    def coast(self, v: float, duration: float) -> tuple[float, float]:
+    def coast(self, v: Any, duration: Any) -> tuple[Any, Any]:
         """Speed after a shift of ``duration`` and the distance covered (closed form)."""
         phase = constant_force_phase(
             v, self.psi * self.mass * self.g, self.drag, self.delta_free * self.mass, duration

@@ -252,8 +252,9 @@ def _reference(formulas: _Formulas, base: Any, fluctuation: bool, nodes: bool) -
         bad[rows] |= ~np.isfinite(torque) | ~np.isfinite(omega)
         return np.stack([torque, 1.0 / omega], axis=1)
 
-    def stop(rows: Any, y_old: Any, y_new: Any) -> Any:  # E reaches the floor: a stall
-        g_old, g_new = y_old[:, 0] - floor[rows], y_new[:, 0] - floor[rows]
+    def stop(step: Any) -> Any:  # E reaches the floor: a stall
+        g_old = step.y_old[:, 0] - floor[step.rows]
+        g_new = step.y_new[:, 0] - floor[step.rows]
         return (g_old >= 0.0) & (g_new <= 0.0)
 
     t_scale = span / np.maximum(omega0, np.sqrt(2.0 * e_scale / i0))
