@@ -31,12 +31,36 @@ class KernelChunk:
         scene: dict[str, Any],
         keys: Sequence[str],
         wanted: Sequence[str],
+        check_rows: bool = False,
     ) -> None:
         self.problem = problem
         self.path = str(path)
         self.scene = scene
         self.keys = list(keys)
         self.wanted = list(wanted)
+        #: Validate every row's scene (a study whose box of drawn values crosses a
+        #: cross-field rule): an invalid row is declined, to be solved alone (its
+        #: validation then says why), and the valid rows stay vectorized.
+        self.check_rows = check_rows
+
+    def invalid_rows(self, module: Any, block: Any) -> Any:
+        """The rows of ``block`` whose scene the problem's model refuses."""
+        import numpy as np
+
+        from mdcalc.errors import InputError
+        from mdcalc.runs.sweep import set_key
+
+        locs = [tuple(int(p) if p.isdigit() else p for p in k.split(".")) for k in self.keys]
+        invalid = np.zeros(len(block), dtype=bool)
+        for i, row in enumerate(block.tolist()):
+            data = copy.deepcopy(self.scene)
+            for loc, value in zip(locs, row, strict=True):
+                set_key(data, loc, float(value))
+            try:
+                validate(module.Case, CaseText(Path(self.path), "", data))
+            except (InputError, ArithmeticError):
+                invalid[i] = True
+        return invalid
 
     def __call__(self, block: Any) -> dict[str, Any] | None:
         import warnings
@@ -66,6 +90,8 @@ class KernelChunk:
             if declined is None
             else np.array(np.broadcast_to(np.asarray(declined, dtype=bool), (n,)))
         )
+        if self.check_rows:
+            part[DECLINED] |= self.invalid_rows(module, block)
         return part
 
 

@@ -2,10 +2,13 @@
 every sample as a case of its own (validated, solved under its time limit), on the
 process pool or a dask cluster (:mod:`mdcalc.runs.cluster`).
 
-The way is chosen once for the whole study, never per chunk: the kernel when every
-sample's scene is valid (the corners of the drawn box validate) and the kernel
-takes all of them; otherwise point by point. So a result does not depend on chunk
-sizes or on where a chunk ran.
+The way is chosen once for the whole study, never per chunk: the kernel when it
+takes the study's keys and results, otherwise point by point. Where every corner of
+the box of drawn values validates, so does every sample (field bounds and the
+problem's rules along the box); where some corner breaks a cross-field rule, each
+block validates its rows and declines the invalid ones, which are then solved alone
+(their validation says why) while the rest stay vectorized. So a result does not
+depend on chunk sizes or on where a chunk ran.
 """
 
 from __future__ import annotations
@@ -58,8 +61,8 @@ class Evaluated:
     note: str = ""
 
 
-def _chunk(plan: Plan, wanted: Sequence[str]) -> KernelChunk:
-    return KernelChunk(plan.problem, plan.case.path, plan.scene_data, plan.keys, wanted)
+def _chunk(plan: Plan, wanted: Sequence[str], check_rows: bool = False) -> KernelChunk:
+    return KernelChunk(plan.problem, plan.case.path, plan.scene_data, plan.keys, wanted, check_rows)
 
 
 class SampleRunner:
@@ -103,8 +106,9 @@ def evaluate(
 ) -> Evaluated:
     """Every row of ``samples`` (one column per input): by the kernel where it can,
     else point by point on ``mapper``."""
-    if _kernel_fits(plan, samples, wanted):
-        evaluated = _by_kernel(plan, samples, wanted, mapper, on_done, time_limit)
+    fits = _kernel_fits(plan, samples, wanted)
+    if fits is not None:
+        evaluated = _by_kernel(plan, samples, wanted, mapper, on_done, time_limit, fits)
         if evaluated is not None:
             return evaluated
         note = "the kernel declined some samples: every sample was solved on its own"
@@ -115,18 +119,20 @@ def evaluate(
     return evaluated
 
 
-def _kernel_fits(plan: Plan, samples: Any, wanted: Sequence[str]) -> bool:
-    """Does the problem have a kernel for these keys, and is every sample's scene
-    valid (each corner of the box of the drawn values validates)?"""
+def _kernel_fits(plan: Plan, samples: Any, wanted: Sequence[str]) -> bool | None:
+    """None where the problem has no kernel for these keys and results; else whether
+    each row must be validated (False: every corner of the box of the drawn values
+    validates, and so does every sample)."""
     from mdcalc.problems import PROBLEMS
     from mdcalc.runs.sweep import set_key
 
     module = PROBLEMS[plan.problem].load()
     if getattr(module, "sweep", None) is None or len(plan.inputs) > MAX_CORNER_INPUTS:
-        return False
+        return None
     if len(samples) == 0:
-        return False
+        return None
     ends = [(float(samples[:, j].min()), float(samples[:, j].max())) for j in range(len(plan.keys))]
+    check_rows = False
     for corner in product(*ends):
         data = copy.deepcopy(plan.scene_data)
         for item, value in zip(plan.inputs, corner, strict=True):
@@ -134,10 +140,13 @@ def _kernel_fits(plan: Plan, samples: Any, wanted: Sequence[str]) -> bool:
         try:
             validate(module.Case, CaseText(plan.case.path, "", data))
         except (InputError, ArithmeticError):
-            return False
+            check_rows = True
+            break
     import numpy as np
 
-    return _chunk(plan, wanted)(np.array(ends).T) is not None
+    if _chunk(plan, wanted, check_rows)(np.array(ends).T) is None:
+        return None
+    return check_rows
 
 
 def _by_kernel(
@@ -147,12 +156,13 @@ def _by_kernel(
     mapper: Mapper,
     on_done: Callable[[int], None] | None,
     time_limit: float | None,
+    check_rows: bool = False,
 ) -> Evaluated | None:
     import numpy as np
 
     n = len(samples)
     blocks = [samples[i : i + KERNEL_CHUNK] for i in range(0, n, KERNEL_CHUNK)]
-    run = _chunk(plan, wanted)
+    run = _chunk(plan, wanted, check_rows)
     parts: Iterable[dict[str, Any] | LostBlock | None]
     if isinstance(mapper, PoolMapper):
         # The first block runs here. A closed form's kernel is faster here than
