@@ -51,6 +51,11 @@ SAMPLE_BUDGET = 1 << 22
 #: Samples evaluated at once (rows × times of a tile).
 _TILE = 1 << 18
 _GOLDEN = (math.sqrt(5.0) - 1.0) / 2.0
+#: Golden-section steps of a candidate: its bracket (two sample steps) shrinks to
+#: 0.618⁴⁸ ≈ 10⁻¹⁰ of itself. A maximum's value is flat to second order, so its value
+#: is exact to rounding long before; its time is set to about √ε of the step by the
+#: rounding of the sums themselves, which more steps cannot improve.
+GOLDEN_STEPS = 48
 
 
 def cosine_sum_maximum(
@@ -152,7 +157,7 @@ def maxima(
     a = high - _GOLDEN * (high - low)
     c = low + _GOLDEN * (high - low)
     f_a, f_c = candidate_values(a), candidate_values(c)
-    for _ in range(80):
+    for _ in range(GOLDEN_STEPS):
         left = f_a >= f_c  # the maximum is in [low, c]: c moves to a, a is new
         high = np.where(left, c, high)
         low = np.where(left, low, a)
