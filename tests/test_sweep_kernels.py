@@ -185,6 +185,7 @@ def test_a_heavy_kernel_sweep_runs_in_blocks_on_the_pool_bit_identical(monkeypat
     # A kernel whose first block of points takes long (here: any) sends the other
     # blocks to the pool, as a study's samples go: the columns and statuses of the
     # sweep run whole in this process, bit for bit, no-answer points solved alone.
+    from mdcalc.runs import kernel
     from mdcalc.runs import sweep as sweeps
 
     case = CASES / "mine-hoist" / "seed_1025.toml"
@@ -193,7 +194,7 @@ def test_a_heavy_kernel_sweep_runs_in_blocks_on_the_pool_bit_identical(monkeypat
     wanted = ["mu12_first_swing", "mu23_first_swing_time", "peak_moment_23"]
     here = sweeps.evaluate(plan, wanted, 1)
     monkeypatch.setattr(sweeps, "BLOCK", 97)
-    monkeypatch.setattr(sweeps, "HEAVY_BLOCK_SECONDS", 0.0)
+    monkeypatch.setattr(kernel, "HEAVY_BLOCK_SECONDS", 0.0)
     pooled = sweeps.evaluate(plan, wanted, 2)
     assert here.vectorized and pooled.vectorized
     assert list(pooled.status) == list(here.status) and 3 in set(here.status.tolist())

@@ -506,3 +506,40 @@ def _key_lines(text: str) -> dict[tuple[str | int, ...], int]:
         if key:
             lines.setdefault((*current, *_split_key(key.group(1))), number)
     return lines
+
+
+# ------------------------------------------------------------ keys of case data
+
+
+def set_key(data: dict[str, Any], loc: tuple[str | int, ...], value: Any) -> None:
+    """Set ``data[loc] = value``, making missing tables on the way."""
+    node: Any = data
+    for part in loc[:-1]:
+        if isinstance(part, int):
+            if not isinstance(node, list) or part >= len(node):
+                raise KeyError(part)
+            node = node[part]
+        else:
+            if not isinstance(node, dict):
+                raise KeyError(part)
+            node = node.setdefault(part, {})
+    last = loc[-1]
+    if isinstance(last, int):
+        if not isinstance(node, list) or last >= len(node):
+            raise KeyError(last)
+        node[last] = value
+    elif isinstance(node, dict):
+        node[last] = value
+    else:
+        raise KeyError(last)
+
+
+def get_key(data: Any, loc: tuple[str | int, ...]) -> Any:
+    """``data[loc]``, or None where the path is not there."""
+    node = data
+    for part in loc:
+        try:
+            node = node[part]
+        except (KeyError, IndexError, TypeError):
+            return None
+    return node

@@ -5,7 +5,9 @@ a block lost for good becomes."""
 from __future__ import annotations
 
 import copy
-from collections.abc import Sequence
+import itertools
+import time
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -48,7 +50,7 @@ class KernelChunk:
         import numpy as np
 
         from mdcalc.errors import InputError
-        from mdcalc.runs.sweep import set_key
+        from mdcalc.input.casefile import set_key
 
         locs = [tuple(int(p) if p.isdigit() else p for p in k.split(".")) for k in self.keys]
         invalid = np.zeros(len(block), dtype=bool)
@@ -105,3 +107,23 @@ class LostBlock:
 
 def lost_block(block: Any, error: BaseException) -> LostBlock:
     return LostBlock(f"lost on the cluster: {type(error).__name__}: {error}")
+
+
+def kernel_parts(run: KernelChunk, blocks: Sequence[Any], mapper: Any) -> tuple[Iterable[Any], str]:
+    """Each block's kernel answer, in block order, and where the blocks ran ("" for
+    this process). On the process pool the first block runs here, and so do the
+    others unless it took longer than HEAVY_BLOCK_SECONDS (a modal solution and its
+    maxima in time, an ODE reference): then they go to the pool's processes. On a
+    cluster every block goes to the workers, retried where one dies; a block lost
+    for good comes back as a :class:`LostBlock`. The numbers are the same either way:
+    each row's are its own."""
+    from mdcalc.runs.cluster import PoolMapper
+
+    if not isinstance(mapper, PoolMapper):
+        return mapper(run, blocks, on_error=lost_block), mapper.description
+    clock = time.perf_counter()
+    first = run(blocks[0])
+    heavy = time.perf_counter() - clock > HEAVY_BLOCK_SECONDS
+    shipped = mapper.description if heavy and mapper.jobs > 1 and len(blocks) > 1 else ""
+    rest = mapper(run, blocks[1:], on_error=lost_block) if shipped else map(run, blocks[1:])
+    return itertools.chain([first], rest), shipped

@@ -22,17 +22,19 @@ from typing import Any
 
 from mdcalc.core.budget import DEFAULT_SECONDS
 from mdcalc.errors import EXIT_BUG, EXIT_INPUT, EXIT_NO_ANSWER, EXIT_OK, InputError, Problem
-from mdcalc.input.casefile import (
+from mdcalc.input.casefile import (  # get_key, set_key: the sweep's and the study's
     CaseText,
+    get_key,
     is_integer_field,
     missing_name,
     read_case,
+    set_key,
     unit_of,
     validate,
 )
 from mdcalc.input.model import DECLINED
 from mdcalc.runs.cluster import PoolMapper
-from mdcalc.runs.kernel import BLOCK, HEAVY_BLOCK_SECONDS
+from mdcalc.runs.kernel import BLOCK
 from mdcalc.runs.runner import problem_of, solve_model
 
 #: A grid larger than this is refused: 10⁷ points of a vectorized problem take
@@ -87,39 +89,6 @@ def parse_vary(text: str) -> Vary:
 
 
 # ------------------------------------------------------------------------- the grid
-
-
-def set_key(data: dict[str, Any], loc: tuple[str | int, ...], value: Any) -> None:
-    """Set ``data[loc] = value``, making missing tables on the way."""
-    node: Any = data
-    for part in loc[:-1]:
-        if isinstance(part, int):
-            if not isinstance(node, list) or part >= len(node):
-                raise KeyError(part)
-            node = node[part]
-        else:
-            if not isinstance(node, dict):
-                raise KeyError(part)
-            node = node.setdefault(part, {})
-    last = loc[-1]
-    if isinstance(last, int):
-        if not isinstance(node, list) or last >= len(node):
-            raise KeyError(last)
-        node[last] = value
-    elif isinstance(node, dict):
-        node[last] = value
-    else:
-        raise KeyError(last)
-
-
-def get_key(data: Any, loc: tuple[str | int, ...]) -> Any:
-    node = data
-    for part in loc:
-        try:
-            node = node[part]
-        except (KeyError, IndexError, TypeError):
-            return None
-    return node
 
 
 @dataclass
@@ -373,13 +342,9 @@ def evaluate(
     messages: list[str] = []
     if kernel is None:
         vectorized = None
-    elif mapper is not None and not isinstance(mapper, PoolMapper):
-        vectorized = _kernel_in_blocks(sweep, grid, keys, wanted, mapper, status, messages)
-    else:
-        pool = mapper if mapper is not None else PoolMapper(jobs)
-        vectorized = _kernel_here_or_pooled(
-            sweep, model, grid, keys, wanted, pool, status, messages
-        )
+    else:  # in blocks: here, on the pool when a block is heavy, or on the cluster
+        where = mapper if mapper is not None else PoolMapper(jobs)
+        vectorized = _kernel_in_blocks(sweep, grid, keys, wanted, where, status, messages)
     todo = np.arange(sweep.points)
     if vectorized is not None and all(k in vectorized for k in wanted):
         for key in wanted:
@@ -416,47 +381,6 @@ def evaluate(
     return Table(keys + wanted, units, columns, status, messages, vectorized=by_kernel)
 
 
-def _kernel_here_or_pooled(
-    sweep: Plan,
-    model: Any,
-    grid: dict[str, Any],
-    keys: list[str],
-    wanted: list[str],
-    pool: PoolMapper,
-    status: Any,
-    messages: list[str],
-) -> dict[str, Any] | None:
-    """The kernel here on the whole grid, or, where its first block of points takes
-    long (a modal solution and its maxima in time) and the pool has more than one
-    job, in blocks on the pool, as a study's samples run. The same numbers either
-    way: each point's are its own."""
-    import time
-
-    kernel = _module(sweep.problem).sweep
-    if pool.jobs <= 1 or sweep.points <= BLOCK:
-        return kernel(model, grid, wanted)
-    first = {key: column[:BLOCK] for key, column in grid.items()}
-    clock = time.perf_counter()
-    head = kernel(model, first, wanted)
-    if head is None or any(key not in head for key in wanted):
-        return head  # the kernel cannot give these: point by point
-    if time.perf_counter() - clock <= HEAVY_BLOCK_SECONDS:
-        return kernel(model, grid, wanted)
-    head.setdefault(DECLINED, False)
-    rest = {key: column[BLOCK:] for key, column in grid.items()}
-    tail = _kernel_in_blocks(sweep, rest, keys, wanted, pool, status, messages, BLOCK)
-    if tail is None:
-        return None
-    return {key: _joined(head[key], tail[key], BLOCK) for key in [*wanted, DECLINED]}
-
-
-def _joined(head: Any, tail: Any, size: int) -> Any:
-    import numpy as np
-
-    start = np.broadcast_to(np.asarray(head), (size,))
-    return np.concatenate([start.astype(np.asarray(tail).dtype), tail])
-
-
 def _kernel_in_blocks(
     sweep: Plan,
     grid: dict[str, Any],
@@ -465,15 +389,14 @@ def _kernel_in_blocks(
     mapper: Any,
     status: Any,
     messages: list[str],
-    offset: int = 0,
 ) -> dict[str, Any] | None:
-    """The kernel in blocks of points on the mapper's workers (a cluster's, retried
-    where one dies, or the pool's); a block lost past the retries gives its points
-    exit 70 and a message. None where the kernel declines the grid (point by point
-    then). ``offset``: the grid's first point in the sweep."""
+    """The kernel in blocks of points (:func:`~mdcalc.runs.kernel.kernel_parts`: here,
+    on the pool when a block is heavy, or on a cluster's workers, retried where one
+    dies); a block lost past the retries gives its points exit 70 and a message. None
+    where the kernel declines the grid (point by point then)."""
     import numpy as np
 
-    from mdcalc.runs.kernel import KernelChunk, LostBlock, lost_block
+    from mdcalc.runs.kernel import KernelChunk, LostBlock, kernel_parts
 
     data = copy.deepcopy(sweep.case.data)
     data.pop("expect", None)
@@ -483,13 +406,14 @@ def _kernel_in_blocks(
     columns = {key: np.full(len(points), np.nan) for key in wanted}
     declined = np.zeros(len(points), dtype=bool)
     start = 0
-    for block, part in zip(blocks, mapper(run, blocks, on_error=lost_block), strict=True):
+    parts, _ = kernel_parts(run, blocks, mapper)
+    for block, part in zip(blocks, parts, strict=True):
         end = start + len(block)
         if part is None:
             return None
         if isinstance(part, LostBlock):
-            status[offset + start : offset + end] = EXIT_BUG
-            at = f"points {offset + start} to {offset + end - 1}"
+            status[start:end] = EXIT_BUG
+            at = f"points {start} to {end - 1}"
             messages.append(f"{sweep.case.path}: error: {at}: {part.reason}")
         else:
             for key in wanted:

@@ -14,10 +14,8 @@ depend on chunk sizes or on where a chunk ran.
 from __future__ import annotations
 
 import copy
-import itertools
 import math
-import time
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from itertools import product
 from typing import Any
@@ -25,14 +23,8 @@ from typing import Any
 from mdcalc.errors import EXIT_BUG, EXIT_INPUT, EXIT_NO_ANSWER, EXIT_OK, InputError
 from mdcalc.input.casefile import CaseText, validate
 from mdcalc.input.model import DECLINED
-from mdcalc.runs.cluster import Mapper, PoolMapper
-from mdcalc.runs.kernel import (
-    BLOCK,
-    HEAVY_BLOCK_SECONDS,
-    KernelChunk,
-    LostBlock,
-    lost_block,
-)
+from mdcalc.runs.cluster import Mapper
+from mdcalc.runs.kernel import BLOCK, KernelChunk, LostBlock, kernel_parts
 from mdcalc.runs.study.spec import Plan
 
 #: Samples per kernel call.
@@ -80,7 +72,8 @@ class SampleRunner:
         self.time_limit = time_limit
 
     def __call__(self, row: Sequence[float]) -> tuple[int, list[float], str]:
-        from mdcalc.runs.sweep import point_results, set_key
+        from mdcalc.input.casefile import set_key
+        from mdcalc.runs.sweep import point_results
 
         data = copy.deepcopy(self.scene)
         for loc, value in zip(self.locs, row, strict=True):
@@ -123,8 +116,8 @@ def _kernel_fits(plan: Plan, samples: Any, wanted: Sequence[str]) -> bool | None
     """None where the problem has no kernel for these keys and results; else whether
     each row must be validated (False: every corner of the box of the drawn values
     validates, and so does every sample)."""
+    from mdcalc.input.casefile import set_key
     from mdcalc.problems import PROBLEMS
-    from mdcalc.runs.sweep import set_key
 
     module = PROBLEMS[plan.problem].load()
     if getattr(module, "sweep", None) is None or len(plan.inputs) > MAX_CORNER_INPUTS:
@@ -162,21 +155,7 @@ def _by_kernel(
 
     n = len(samples)
     blocks = [samples[i : i + KERNEL_CHUNK] for i in range(0, n, KERNEL_CHUNK)]
-    run = _chunk(plan, wanted, check_rows)
-    parts: Iterable[dict[str, Any] | LostBlock | None]
-    if isinstance(mapper, PoolMapper):
-        # The first block runs here. A closed form's kernel is faster here than
-        # shipped; one that takes long a block (a modal solution and its maxima in
-        # time) sends the others to the pool's processes.
-        clock = time.perf_counter()
-        first = run(blocks[0])
-        heavy = time.perf_counter() - clock > HEAVY_BLOCK_SECONDS
-        shipped = mapper.description if heavy and mapper.jobs > 1 and len(blocks) > 1 else ""
-        rest = mapper(run, blocks[1:], on_error=lost_block) if shipped else map(run, blocks[1:])
-        parts = itertools.chain([first], rest)
-    else:  # on a cluster every block goes to the workers, retried where one dies
-        shipped = mapper.description
-        parts = mapper(run, blocks, on_error=lost_block)
+    parts, shipped = kernel_parts(_chunk(plan, wanted, check_rows), blocks, mapper)
     values = {k: np.empty(n) for k in wanted}
     declined = np.zeros(n, dtype=bool)
     lost = np.zeros(n, dtype=bool)

@@ -350,7 +350,7 @@ def _median_scene_is_valid(
 
     import numpy as np
 
-    from mdcalc.runs.sweep import set_key
+    from mdcalc.input.casefile import set_key
 
     data = copy.deepcopy(scene)
     for item in inputs:
@@ -385,7 +385,7 @@ def _input(
         problems.append(Problem(message, path, line))
 
     info = field_info(model, loc)
-    from mdcalc.runs.sweep import get_key
+    from mdcalc.input.casefile import get_key
 
     base = get_key(scene, loc)
     from mdcalc.input.casefile import takes_numbers
