@@ -91,7 +91,6 @@ class Step:
     f_new: Any
     K: Any  # (13, m, d) stages
     rhs: BlockRhs
-    evaluations: Any  # the block's counter, to count the extension's
     _dense: Dense | None = field(default=None, repr=False)
 
     def dense(self) -> Dense:
@@ -104,7 +103,6 @@ class Step:
             for s, (a, c) in enumerate(zip(tableau.A_EXTRA, tableau.C_EXTRA, strict=True), 13):
                 dy = _combine(a[:s], K[:s]) * h
                 K[s] = self.rhs(self.rows, self.t_old + c * h[:, 0], self.y_old + dy)
-            self.evaluations[self.rows] += 3
             delta = self.y_new - self.y_old
             F = np.empty((7, m, d))
             F[0] = delta
@@ -160,11 +158,16 @@ def dop853_block(
     stop: Callable[[Step], Any] | None = None,
     on_step: Callable[[Step], None] | None = None,
     budget: int = 100_000,
+    dense_counted: bool = False,
 ) -> BlockRun:
     """Integrate dy/dt = rhs from ``t0`` to ``t1`` (arrays of shape (n,)), y of
     shape (n, d), ``atol`` of shape (n, d) or broadcastable. ``stop(step)`` marks the
     rows of an accepted step that crossed the caller's terminal event (the caller may
-    locate the event on ``step.dense()``); those rows end there."""
+    locate the event on ``step.dense()``); those rows end there. ``budget`` bounds a
+    row's right-hand-side evaluations as scipy counts them: 2 at the start, 12 a step
+    tried, and with ``dense_counted`` 3 more a step taken (solve_ivp with
+    ``dense_output``, which builds the extension after every step) whether or not
+    this caller asks for the extension: a row's count never depends on other rows."""
     from mdcalc.core import budget as time_budget
 
     tableau = _tableau()
@@ -225,6 +228,8 @@ def dop853_block(
             )
             grow = SAFETY * error**EXPONENT
         evaluations[rows] += 12
+        if dense_counted:
+            evaluations[rows] += np.where((error < 1.0) & np.isfinite(error), 3, 0)
         bad = tiny | ~np.isfinite(error) | ~np.isfinite(y_new).all(axis=1)
         bad |= ~np.isfinite(f_new).all(axis=1) | (evaluations[rows] > budget)
         accept = (error < 1.0) & ~bad
@@ -246,7 +251,6 @@ def dop853_block(
                 f_new[took],
                 K[:, took],
                 rhs,
-                evaluations,
             )
             if on_step is not None:
                 on_step(step)

@@ -65,20 +65,40 @@ class KernelChunk:
         return invalid
 
     def __call__(self, block: Any) -> dict[str, Any] | None:
-        import warnings
-
         import numpy as np
 
         from mdcalc.problems import PROBLEMS
 
         module: Any = PROBLEMS[self.problem].load()
+        n = len(block)
+        invalid = self.invalid_rows(module, block) if self.check_rows else np.zeros(n, dtype=bool)
+        valid = np.flatnonzero(~invalid)
+        part = {k: np.full(n, np.nan) for k in self.wanted}
+        part[DECLINED] = invalid.copy()  # invalid rows: solved alone, where they are refused
+        if not valid.size:
+            return part
+        out = self._kernel(module, block[valid])
+        if out is None:
+            return None
+        for k in self.wanted:
+            part[k][valid] = out[k]
+        part[DECLINED][valid] = out[DECLINED]
+        return part
+
+    def _kernel(self, module: Any, block: Any) -> dict[str, Any] | None:
+        """The problem's kernel on the rows of ``block`` (valid scenes): the wanted
+        values and the declined mask over the rows, or None (point by point)."""
+        import warnings
+
+        import numpy as np
+
         model = validate(module.Case, CaseText(Path(self.path), "", copy.deepcopy(self.scene)))
         grid = {key: np.ascontiguousarray(block[:, j]) for j, key in enumerate(self.keys)}
         try:
             with warnings.catch_warnings(), np.errstate(all="ignore"):
                 warnings.simplefilter("ignore", RuntimeWarning)
                 out = module.sweep(model, grid, self.wanted)
-        except (ArithmeticError, ValueError):
+        except (ArithmeticError, ValueError, MemoryError):
             return None  # the samples go point by point, where each is judged alone
         if out is None or any(k not in out for k in self.wanted):
             return None
@@ -92,8 +112,6 @@ class KernelChunk:
             if declined is None
             else np.array(np.broadcast_to(np.asarray(declined, dtype=bool), (n,)))
         )
-        if self.check_rows:
-            part[DECLINED] |= self.invalid_rows(module, block)
         return part
 
 

@@ -414,10 +414,7 @@ def _lecture(case: Case, scene: Scene, n: int) -> dict[str, Any]:
     from mdcalc.problems.acceleration.solve import lecture_coefficients
 
     traction, omega_d = lecture_coefficients(case, scene)
-    values: dict[str, Any] = {
-        "lecture_traction_coefficient": traction,
-        "lecture_shift_angular_speed": omega_d,
-    }
+    values: dict[str, Any] = {}
     gears = scene.gears
     target = np.broadcast_to(scene.target, (n,))
     v = np.zeros(n)
@@ -447,6 +444,9 @@ def _lecture(case: Case, scene: Scene, n: int) -> dict[str, Any]:
         values[f"lecture_v_end_{k + 1}"] = np.where(failed, np.nan, ends[k])
         values[f"lecture_time_{k + 1}"] = np.where(failed, np.nan, times[k])
     values["lecture_total_time"] = np.where(failed, np.nan, total)
+    # where (7.42) does not apply the single scene shows no lecture section at all
+    values["lecture_traction_coefficient"] = np.where(failed, np.nan, traction)
+    values["lecture_shift_angular_speed"] = np.where(failed, np.nan, omega_d)
     return values
 
 

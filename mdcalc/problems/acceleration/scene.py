@@ -113,11 +113,13 @@ class Scene:
         a = self.engine_acceleration(gear, v, slipping)
         if self.phi is None:
             return a
-        return of(a).minimum(a, self.adhesion_acceleration(v))
+        grip = self.adhesion_acceleration(v)
+        return of(a, grip).minimum(a, grip)
 
     def engine_speed_at(self, gear: int, v: Any) -> Any:
         """The engine's actual speed: held at the launch speed while the clutch slips."""
-        return of(v).maximum(self.engine_speed(gear, v), self.launch)
+        speed = self.engine_speed(gear, v)
+        return of(speed, self.launch).maximum(speed, self.launch)
 
     def slipping_at(self, gear: int, v: Any) -> Any:
         """The clutch slips while the road speed gives less than the launch engine speed."""

@@ -70,6 +70,10 @@ SAMPLES_A_STEP = 8
 #: Golden-section iterations of an extreme, as the single scene's.
 GOLDEN_ITERATIONS = 60
 
+#: Kovylin's nodes × rows of a block at most (a node array of 32 MB): a block of more
+#: rows runs in parts.
+NODE_CELLS = 4_000_000
+
 FLUCTUATION_KEYS = ("max_speed", "min_speed", "mean_speed_revolution", "fluctuation")
 KOVYLIN_KEYS = ("kovylin_final_speed", "kovylin_worst_error")
 
@@ -156,6 +160,22 @@ def sweep(
     size = max([np.size(v) for v in grid.values()] + [1])
     c = with_values(case, others)
     motion = c.motion
+    kovylin = wanted is None or bool(set(wanted) & set(KOVYLIN_KEYS))
+    nodes = np.max(np.ceil(np.asarray(motion.revolutions * motion.steps_per_revolution))) + 1
+    rows = max(1, int(NODE_CELLS // nodes)) if kovylin else size
+    if size > rows:  # Kovylin's nodes × rows in parts that fit in memory; rows are independent
+        parts = [
+            sweep(
+                case,
+                {k: np.broadcast_to(v, (size,))[i : i + rows] for k, v in grid.items()},
+                wanted,
+            )
+            for i in range(0, size, rows)
+        ]
+        done = [part for part in parts if part is not None]
+        if len(done) < len(parts):
+            return None
+        return {k: np.concatenate([part[k] for part in done]) for k in done[0]}
 
     def spread(value: Any) -> Any:
         return np.array(np.broadcast_to(np.asarray(value, dtype=float), (size,)))
@@ -183,7 +203,6 @@ def sweep(
     formulas = _Formulas(c, parameters, c.inertia.value)
     want = set(wanted) if wanted is not None else None
     with np.errstate(all="ignore"):
-        kovylin = want is None or bool(want & set(KOVYLIN_KEYS))
         fluctuation = want is None or bool(want & set(FLUCTUATION_KEYS))
         run = _reference(formulas, base, fluctuation, kovylin)
         values = run.values
@@ -281,6 +300,7 @@ def _reference(formulas: _Formulas, base: Any, fluctuation: bool, nodes: bool) -
         stop=stop,
         on_step=on_step,
         budget=EXPLICIT_BUDGET,
+        dense_counted=True,  # the single reference keeps its dense solution
     )
     declined |= ~out.done | bad
     e_end, t_end = out.y[:, 0], out.y[:, 1]

@@ -1,0 +1,93 @@
+"""Edges of the ODE-referenced kernels (mechanism, acceleration) that random samples
+of the shipped cases do not reach: each checked against single scenes."""
+
+from __future__ import annotations
+
+import copy
+import math
+import tomllib
+
+import numpy as np
+
+from mdcalc.input.casefile import CaseText, validate
+from mdcalc.input.model import DECLINED
+from mdcalc.problems import PROBLEMS
+from tests.conftest import CASES
+
+
+def _case(name: str, relative: str, change=None):
+    path = CASES / relative
+    data = tomllib.loads(path.read_text(encoding="utf-8"))
+    data.pop("expect", None)
+    if change is not None:
+        change(data)
+    module = PROBLEMS[name].load()
+    return module, path, data, validate(module.Case, CaseText(path, "", data))
+
+
+def test_an_adhesion_only_grid_runs_vectorized_and_equals_single_scenes(monkeypatch):
+    # Drawing the tyre grip alone leaves the launch's engine acceleration a plain
+    # number while the grip is an array: the lesser of the two is still taken per row.
+    from mdcalc import methods
+    from mdcalc.runs.runner import solve_model
+
+    module, path, data, model = _case("acceleration", "acceleration/high_power.toml")
+    grip = np.array([0.8, 1.0])
+    with np.errstate(all="ignore"):
+        out = module.sweep(model, {"adhesion.coefficient": grip})
+    assert out is not None and not out[DECLINED].any()
+    monkeypatch.setattr(methods, "REFERENCE_ONLY", True)
+    for i, phi in enumerate(grip.tolist()):
+        point = copy.deepcopy(data)
+        point["adhesion"]["coefficient"] = phi
+        _, report = solve_model(
+            "acceleration", module, validate(module.Case, CaseText(path, "", point)), None
+        )
+        results = report.results()
+        for key in ("launch_acceleration", "time_to_target", "adhesion"):
+            assert math.isclose(out[key][i], results[key].value, rel_tol=1e-8), key
+
+
+def test_the_lecture_section_is_absent_where_742_does_not_apply():
+    # A/m·U - ψ <= 0 in a gear: the single scene reports no lecture section at all,
+    # its coefficients included (NaN in the kernel), while the other rows keep theirs.
+    module, _, _, model = _case("acceleration", "acceleration/lecture.toml")
+    with np.errstate(all="ignore"):
+        out = module.sweep(model, {"lecture.traction_coefficient": np.array([1.1, 0.02])})
+    assert out["lecture_traction_coefficient"][0] == 1.1
+    for key in (
+        "lecture_traction_coefficient",
+        "lecture_shift_angular_speed",
+        "lecture_total_time",
+    ):
+        assert math.isnan(out[key][1]), key
+
+
+def test_a_mechanism_row_counts_its_evaluations_as_the_single_reference(monkeypatch):
+    # The single reference keeps its dense solution: 15 evaluations a step; past the
+    # explicit budget it reruns by Radau. The kernel counts the same per row (its
+    # steps differ only where the error
+    # estimate is at rounding level, a kink each turn here: 3371 against 3707), so a
+    # row is declined (solved alone) when the single run would switch, within 10 %,
+    # with or without other rows beside it.
+    import importlib
+
+    from mdcalc.problems.mechanism.reference import reference
+    from mdcalc.problems.mechanism.scene import scene_of
+
+    solve = importlib.import_module("mdcalc.problems.mechanism.solve")  # the module
+
+    def shorter(data):
+        data["motion"]["revolutions"] = 4.0
+
+    module, path, data, model = _case("mechanism", "mechanism/crank_press.toml", shorter)
+    count = reference(scene_of(model), solve.REFERENCE_RTOL, "DOP853").evaluations
+    for budget, declined in ((int(0.9 * count), True), (int(1.1 * count), False)):
+        monkeypatch.setattr(solve, "EXPLICIT_BUDGET", budget)
+        with np.errstate(all="ignore"):
+            alone = module.sweep(
+                model, {"motion.steps_per_revolution": np.array([1.0])}, ["final_speed"]
+            )
+            beside = module.sweep(model, {"motion.steps_per_revolution": np.array([1.0, 16.0])})
+        assert alone[DECLINED].tolist() == [declined], budget
+        assert beside[DECLINED].tolist() == [declined, declined], budget
