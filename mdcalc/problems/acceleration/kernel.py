@@ -27,7 +27,8 @@ from mdcalc.core.units import rpm_to_rad_s
 from mdcalc.input.model import kernel_answer, with_values
 from mdcalc.problems.acceleration.case import RAD_S_TO_RPM, Case
 from mdcalc.problems.acceleration.engine import EngineCurve
-from mdcalc.problems.acceleration.plan import ASYMPTOTE_MARGIN
+from mdcalc.problems.acceleration.plan import reaches
+from mdcalc.problems.acceleration.runs import phase_time_estimate
 from mdcalc.problems.acceleration.scene import Scene, scene_of
 
 #: Keys ``mdcalc sweep`` and ``mdcalc study`` may vary in the vectorized form (N: any
@@ -202,13 +203,6 @@ class PlanBlock:
     limit_gear: Any  # (n,) int
 
 
-def _allows(speed: Any, rev: Any, v: Any) -> Any:
-    """:meth:`~.plan.GearLimit.allows` over arrays."""
-    import numpy as np
-
-    return np.where(rev, v <= speed, v < speed * (1.0 - ASYMPTOTE_MARGIN))
-
-
 def _pulls(scene: Scene, gear: int, v: Any) -> Any:
     import numpy as np
 
@@ -362,8 +356,8 @@ def plan_block(scene: Scene, target: Any, n: int, cache: dict[int, Any] | None =
         v_shift = np.broadcast_to(part.road_speed(gear, part.shift), rows.shape)
         candidate = np.full(rows.size, np.nan)
         if gear < gears - 1:
-            first = (v_shift < tr) & _allows(speed, rev, v_shift)
-            early = ~first & ~_allows(speed, rev, np.minimum(tr, v_shift))
+            first = (v_shift < tr) & reaches(speed, rev, v_shift)
+            early = ~first & ~reaches(speed, rev, np.minimum(tr, v_shift))
             candidate[first] = v_shift[first]
             at = np.flatnonzero(early)
             if at.size:
@@ -381,7 +375,7 @@ def plan_block(scene: Scene, target: Any, n: int, cache: dict[int, Any] | None =
             ok = has[pulls]
             if ok.size:
                 next_speed, next_rev = _limits(scene, nxt, rows[ok], v_land[pulls], cache, n)
-                go = (next_speed > np.minimum(tr[ok], speed[ok])) | _allows(
+                go = (next_speed > np.minimum(tr[ok], speed[ok])) | reaches(
                     next_speed, next_rev, tr[ok]
                 )
                 shifts[ok[go]] = True
@@ -392,7 +386,7 @@ def plan_block(scene: Scene, target: Any, n: int, cache: dict[int, Any] | None =
         out.shift_after[gear, moving] = True
         ending = ~shifts
         ends = rows[ending]
-        reached = _allows(speed[ending], rev[ending], tr[ending])
+        reached = reaches(speed[ending], rev[ending], tr[ending])
         out.present[gear, ends[reached]] = True
         out.v_end[gear, ends[reached]] = tr[ending][reached]
         out.reached[ends] = reached
@@ -498,18 +492,6 @@ def _reference_run(scene: Scene, plan: PlanBlock, n: int) -> tuple[Any, Any, Any
     return t, distance, gear_at.astype(float), failed
 
 
-def _phase_time_estimate(scene: Scene, gear: int, slipping: bool, v0: Any, v1: Any) -> Any:
-    """:func:`~.runs.phase_time_estimate` over arrays, the same nodes and sum."""
-    import numpy as np
-
-    nodes = [v1 - (v1 - v0) * 10.0 ** (-k / 4) for k in range(49)] + [v1]
-    inverse = [1.0 / np.maximum(scene.acceleration(gear, node, slipping), 1e-300) for node in nodes]
-    total: Any = 0
-    for k in range(len(nodes) - 1):
-        total = total + 0.5 * (inverse[k] + inverse[k + 1]) * (nodes[k + 1] - nodes[k])
-    return total
-
-
 def _drive(
     scene: Scene, gear: int, slipping: bool, v0: Any, v1: Any, t: Any, x: Any, atol: Any
 ) -> tuple[Any, Any, Any]:
@@ -520,7 +502,7 @@ def _drive(
     from mdcalc.core.block_ode import dop853_block
 
     m = v0.size
-    span = 2.0 * _phase_time_estimate(scene, gear, slipping, v0, v1) + 1e-3
+    span = 2.0 * phase_time_estimate(scene, gear, slipping, v0, v1) + 1e-3
     now, y = t.copy(), np.stack([v0, x], axis=1)
     end_t, end_x = np.full(m, np.nan), np.full(m, np.nan)
     pending = np.arange(m)

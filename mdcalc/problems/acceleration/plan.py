@@ -4,8 +4,9 @@ of the accelerations)."""
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Literal
+from typing import Any, Literal
 
+from mdcalc.core.xp import of
 from mdcalc.problems.acceleration.scene import Scene
 
 #: Relative distance below a resistance-limited top speed inside which a target
@@ -21,12 +22,18 @@ class GearLimit:
     reason: Literal["rev limit", "resistance"]
 
     def allows(self, v: float) -> bool:
-        """Whether the gear gets the car to speed ``v``. Where traction equals
-        resistance the car only approaches the speed (the time grows as the log of
-        1/(v_top - v)); a target within ASYMPTOTE_MARGIN of it counts as not reached."""
-        if self.reason == "rev limit":
-            return v <= self.speed
-        return v < self.speed * (1.0 - ASYMPTOTE_MARGIN)
+        """Whether the gear gets the car to speed ``v`` (:func:`reaches`)."""
+        return bool(reaches(self.speed, self.reason == "rev limit", v))
+
+
+def reaches(speed: Any, rev_limit: Any, v: Any) -> Any:
+    """Whether a gear limited at ``speed`` (by the rev limit, else by resistance)
+    gets the car to ``v``; floats or arrays over a block of cars. Where traction
+    equals resistance the car only approaches the speed (the time grows as the log
+    of 1/(v_top - v)); a target within ASYMPTOTE_MARGIN of it counts as not reached."""
+    return of(speed, rev_limit, v).where(
+        rev_limit, lambda: v <= speed, lambda: v < speed * (1.0 - ASYMPTOTE_MARGIN)
+    )
 
 
 def gear_limit(scene: Scene, gear: int, v_in: float, samples: int = 256) -> GearLimit:

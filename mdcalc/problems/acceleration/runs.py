@@ -7,6 +7,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, Literal
 
+from mdcalc.core.xp import of
 from mdcalc.methods import NotApplicable
 from mdcalc.problems.acceleration.plan import Stint
 from mdcalc.problems.acceleration.scene import Scene
@@ -177,11 +178,13 @@ def _piecewise_shift(
     return v1, 0.5 * (v0 + v1) * duration
 
 
-def phase_time_estimate(scene: Scene, gear: int, slipping: bool, v0: float, v1: float) -> float:
+def phase_time_estimate(scene: Scene, gear: int, slipping: bool, v0: Any, v1: Any) -> Any:
     """∫ dv/a from v0 to v1 by the trapezoid rule on nodes crowded towards v1, where
-    a target close to a top speed makes 1/a large: a bound for the ODE runs."""
+    a target close to a top speed makes 1/a large: a bound for the ODE runs. Floats,
+    or arrays over a block of cars."""
     nodes = [v1 - (v1 - v0) * 10.0 ** (-k / 4) for k in range(49)] + [v1]
-    inverse = [1.0 / max(scene.acceleration(gear, v, slipping), 1e-300) for v in nodes]
+    accelerations = [scene.acceleration(gear, v, slipping) for v in nodes]
+    inverse = [1.0 / of(a).maximum(a, 1e-300) for a in accelerations]
     return sum(
         0.5 * (inverse[k] + inverse[k + 1]) * (nodes[k + 1] - nodes[k])
         for k in range(len(nodes) - 1)
