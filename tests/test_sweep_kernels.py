@@ -195,8 +195,19 @@ def test_a_heavy_kernel_sweep_runs_in_blocks_on_the_pool_bit_identical(monkeypat
     here = sweeps.evaluate(plan, wanted, 1)
     monkeypatch.setattr(sweeps, "BLOCK", 97)
     monkeypatch.setattr(kernel, "HEAVY_BLOCK_SECONDS", 0.0)
+    monkeypatch.setattr(kernel, "PROBE", 40)  # two probes here, then pieces on the pool
+    shipped = []
+    real = kernel.kernel_parts
+
+    def spy(*args):
+        parts, where = real(*args)
+        shipped.append(where)
+        return parts, where
+
+    monkeypatch.setattr(kernel, "kernel_parts", spy)
     pooled = sweeps.evaluate(plan, wanted, 2)
     assert here.vectorized and pooled.vectorized
+    assert shipped == ["process pool, 2 jobs"]
     assert list(pooled.status) == list(here.status) and 3 in set(here.status.tolist())
     for key in here.keys:
         assert np.array_equal(here.columns[key], pooled.columns[key], equal_nan=True), key

@@ -127,21 +127,71 @@ def lost_block(block: Any, error: BaseException) -> LostBlock:
     return LostBlock(f"lost on the cluster: {type(error).__name__}: {error}")
 
 
+#: Rows of the first two calls of a kernel on the process pool, timed: the first
+#: pays the one-off imports, the second says what a row costs.
+PROBE = 512
+#: Seconds of kernel work a piece sent to the pool holds, about.
+PIECE_SECONDS = 0.25
+
+
 def kernel_parts(run: KernelChunk, blocks: Sequence[Any], mapper: Any) -> tuple[Iterable[Any], str]:
     """Each block's kernel answer, in block order, and where the blocks ran ("" for
-    this process). On the process pool the first block runs here, and so do the
-    others unless it took longer than HEAVY_BLOCK_SECONDS (a modal solution and its
-    maxima in time, an ODE reference): then they go to the pool's processes. On a
-    cluster every block goes to the workers, retried where one dies; a block lost
-    for good comes back as a :class:`LostBlock`. The numbers are the same either way:
-    each row's are its own."""
+    this process). On the process pool two probes of :data:`PROBE` rows run here
+    and time a row: a kernel whose block would take longer than HEAVY_BLOCK_SECONDS
+    (a modal solution and its maxima in time, an ODE reference) has its blocks cut
+    into pieces of about PIECE_SECONDS, at least four per job, run by the pool's
+    processes and joined again per block; a lighter one runs here. On a cluster
+    every block goes to the workers, retried where one dies; a block lost for good
+    comes back as a :class:`LostBlock`. The numbers are the same either way: each
+    row's are its own."""
     from mdcalc.runs.cluster import PoolMapper
 
     if not isinstance(mapper, PoolMapper):
         return mapper(run, blocks, on_error=lost_block), mapper.description
+    total = sum(len(block) for block in blocks)
+    if mapper.jobs <= 1 or total <= 2 * PROBE:
+        return map(run, blocks), ""
+    head = blocks[0]
+    probes = [run(head[:PROBE])]
     clock = time.perf_counter()
-    first = run(blocks[0])
-    heavy = time.perf_counter() - clock > HEAVY_BLOCK_SECONDS
-    shipped = mapper.description if heavy and mapper.jobs > 1 and len(blocks) > 1 else ""
-    rest = mapper(run, blocks[1:], on_error=lost_block) if shipped else map(run, blocks[1:])
-    return itertools.chain([first], rest), shipped
+    probes.append(run(head[PROBE : 2 * PROBE]))
+    per_row = (time.perf_counter() - clock) / len(head[PROBE : 2 * PROBE])
+    if per_row * min(BLOCK, total) <= HEAVY_BLOCK_SECONDS:
+        first = _joined([*probes, run(head[2 * PROBE :])] if len(head) > 2 * PROBE else probes)
+        return itertools.chain([first], map(run, blocks[1:])), ""
+    rest = [head[2 * PROBE :], *blocks[1:]]
+    size = max(64, min(BLOCK, int(PIECE_SECONDS / max(per_row, 1e-12))))
+    size = max(64, min(size, -(-(total - 2 * PROBE) // (4 * mapper.jobs))))
+    pieces = [[b[i : i + size] for i in range(0, len(b), size)] for b in rest]
+    answers = iter(mapper(run, [p for group in pieces for p in group], on_error=lost_block))
+
+    def joined() -> Iterable[Any]:
+        for index, group in enumerate(pieces):
+            parts = [next(answers) for _ in group]
+            yield _joined([*probes, *parts] if index == 0 else parts)
+
+    return joined(), mapper.description
+
+
+def _joined(parts: list[Any]) -> Any:
+    """The answers of consecutive pieces of one block as the block's answer: None
+    if a piece was declined, the first :class:`LostBlock` if one was lost, else each
+    key's values end to end (NaN over a piece without the key)."""
+    import numpy as np
+
+    if len(parts) == 1 or any(p is None for p in parts):
+        return None if any(p is None for p in parts) else parts[0]
+    lost = next((p for p in parts if isinstance(p, LostBlock)), None)
+    if lost is not None:
+        return lost
+    keys = list(dict.fromkeys(k for p in parts for k in p))
+    sizes = [len(p[DECLINED]) for p in parts]
+    return {
+        key: np.concatenate(
+            [
+                p[key] if key in p else np.full(n, False if key == DECLINED else np.nan)
+                for p, n in zip(parts, sizes, strict=True)
+            ]
+        )
+        for key in keys
+    }
