@@ -29,7 +29,8 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
+from typing import Any
 
 import numpy as np
 
@@ -56,13 +57,13 @@ class RampSystem:
     stiffness: np.ndarray  # K, n×n [N·m/rad]
     constant: np.ndarray  # F, n [N·m]
     shape: np.ndarray  # s, n: load per unit of u [N·m per unit of u]
-    start: float  # u₀ = u(0⁺)
-    slope: float  # u₁ = du/dτ [unit of u per s]
-    period: float  # T [s]
+    start: Any  # u₀ = u(0⁺) (a float; in a block, one per row)
+    slope: Any  # u₁ = du/dτ [unit of u per s]
+    period: Any  # T [s]
 
     @property
     def size(self) -> int:
-        return len(self.constant)
+        return int(np.shape(self.constant)[-1])
 
     @property
     def mean_excitation(self) -> float:
@@ -74,13 +75,13 @@ class RampSystem:
         return np.linalg.solve(self.stiffness, self.constant + self.shape * self.mean_excitation)
 
     def first_order(self) -> np.ndarray:
-        """A of y' = A·y + g for y = (x, x')."""
+        """A of y' = A·y + g for y = (x, x') (one per row of a block: leading axes)."""
         n = self.size
         inverse = np.linalg.inv(self.mass)
-        a = np.zeros((2 * n, 2 * n))
-        a[:n, n:] = np.eye(n)
-        a[n:, :n] = -inverse @ self.stiffness
-        a[n:, n:] = -inverse @ self.damping
+        a = np.zeros((*np.shape(self.mass)[:-2], 2 * n, 2 * n))
+        a[..., :n, n:] = np.eye(n)
+        a[..., n:, :n] = -inverse @ self.stiffness
+        a[..., n:, n:] = -inverse @ self.damping
         return a
 
     def load(self, tau: float) -> np.ndarray:
@@ -127,47 +128,219 @@ class Periodic:
         """Largest |λ| [1/s]."""
         return float(np.max(np.abs(self.eigenvalues)))
 
+    def block(self) -> PeriodicBlock:
+        """This state as a block of one."""
+        return PeriodicBlock(
+            np.array([self.period]),
+            self.eigenvalues[None],
+            self.vectors[None],
+            self.coefficients[None],
+            self.p0[None],
+            self.p1[None],
+            np.array([SOLVED]),
+        )
 
-def exact_periodic(system: RampSystem) -> Periodic:
-    n, t = system.size, system.period
-    k, c = system.stiffness, system.damping
-    b = np.linalg.solve(k, system.shape * system.slope)
-    a = np.linalg.solve(k, system.constant + system.shape * system.start - c @ b)
-    p0, p1 = np.concatenate([a, b]), np.concatenate([b, np.zeros(n)])
-    eigenvalues, vectors = np.linalg.eig(system.first_order())
-    if np.linalg.cond(vectors) > 1e12:
-        magnitudes = np.abs(eigenvalues)
-        raise Unresolved(
+
+#: Why a row of a block has no exact periodic state (SOLVED: it has one).
+SOLVED, UNSEPARATED, AS_GOOD_AS_FREE, RESONANT = 0, 1, 2, 3
+
+
+@dataclass(frozen=True)
+class PeriodicBlock:
+    """The exact periodic states of a block of systems, one per row (a study's
+    samples; a single scene is a block of one). ``failure`` says which rows have none
+    and why; their other numbers mean nothing."""
+
+    period: np.ndarray  # T, (m,)
+    eigenvalues: np.ndarray  # λ, (m, 2n) complex
+    vectors: np.ndarray  # V, (m, 2n, 2n) complex
+    coefficients: np.ndarray  # d, (m, 2n) complex
+    p0: np.ndarray  # (m, 2n)
+    p1: np.ndarray  # (m, 2n)
+    failure: np.ndarray  # (m,) SOLVED, UNSEPARATED, AS_GOOD_AS_FREE or RESONANT
+
+    @property
+    def fastest(self) -> np.ndarray:
+        """Largest |λ| of each row [1/s]."""
+        return np.max(np.abs(self.eigenvalues), axis=-1)
+
+    def row(self, i: int) -> Periodic:
+        """Row i's state; raises :class:`Unresolved` or :class:`Unbounded` with the
+        reason when it has none."""
+        if self.failure[i] != SOLVED:
+            raise _failure(int(self.failure[i]), self.eigenvalues[i], float(self.period[i]))
+        return Periodic(
+            float(self.period[i]),
+            self.eigenvalues[i],
+            self.vectors[i],
+            self.coefficients[i],
+            self.p0[i],
+            self.p1[i],
+        )
+
+    def maxima(
+        self, w: Observable, fastest: np.ndarray | None = None
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """Largest w·y over a period of each row (``w``: (2n,) or one per row): values,
+        times, samples per period and whether they resolve the fastest mode (each
+        row's own, or ``fastest``). NaN where a row has no state. Rows are sampled
+        in groups of one sample count and in parts of at most :data:`BLOCK_CELLS`
+        complex exponentials."""
+        m, width = self.p0.shape
+        w = np.broadcast_to(np.asarray(w, dtype=float), (m, width))
+        lam = self.eigenvalues
+        weights = (w[:, None, :] @ self.vectors)[:, 0, :] * self.coefficients
+        slopes = weights * lam
+        level, drift = np.sum(w * self.p0, axis=-1), np.sum(w * self.p1, axis=-1)
+
+        def observe(rows: np.ndarray, tau: np.ndarray) -> np.ndarray:
+            modal = np.exp(tau[..., None] * lam[rows][:, None, :]) * weights[rows][:, None, :]
+            return level[rows][:, None] + drift[rows][:, None] * tau + modal.sum(axis=-1).real
+
+        def rate(rows: np.ndarray, tau: np.ndarray) -> np.ndarray:
+            modal = np.exp(tau[..., None] * lam[rows][:, None, :]) * slopes[rows][:, None, :]
+            return drift[rows][:, None] + modal.sum(axis=-1).real
+
+        samples, resolved = _samples(self.period, self.fastest if fastest is None else fastest)
+        values, times = np.full(m, math.nan), np.full(m, math.nan)
+        solved = self.failure == SOLVED
+        for count in np.unique(samples[solved]):
+            group = np.flatnonzero(solved & (samples == count))
+            parts = max(1, -(-len(group) * int(count) * width // BLOCK_CELLS))
+            for rows in np.array_split(group, parts):
+                h = self.period[rows] / count
+                grid = level[rows][:, None] + drift[rows][:, None] * (np.arange(count) * h[:, None])
+                grid += _modal_grid(weights[rows], lam[rows], h, int(count))
+                values[rows], times[rows] = periodic_maxima(
+                    observe, rate, self.period[rows], int(count), rows, grid
+                )
+        return values, times, samples, resolved
+
+
+#: Samples a run of powers of e^{λh} covers between exact exponentials.
+RUN = 32
+
+
+def _modal_grid(weights: np.ndarray, lam: np.ndarray, h: np.ndarray, count: int) -> np.ndarray:
+    """Re Σᵢ wᵢ·e^{λᵢ·jh} for j = 0 … count - 1 of each row: an exact exponential at
+    every :data:`RUN`-th sample, times the powers of e^{λh} between (a product per
+    sample, not an exponential; round-off grows to about RUN·ε of the modal part)."""
+    k, width = lam.shape
+    run = min(RUN, count)
+    step = np.exp(h[:, None] * lam)
+    powers = np.ones((k, run, width), dtype=complex)
+    powers[:, 1:] = step[:, None, :]
+    powers = np.cumprod(powers, axis=1)
+    anchors = np.exp((np.arange(0, count, run) * h[:, None])[..., None] * lam[:, None, :])
+    anchors *= weights[:, None, :]
+    total = np.zeros((k, count // run, run))
+    for i in range(width):  # mode by mode: Re(a·p) = a'·p' - a''·p''
+        total += anchors[:, :, None, i].real * powers[:, None, :, i].real
+        total -= anchors[:, :, None, i].imag * powers[:, None, :, i].imag
+    return total.reshape(k, count)
+
+
+#: Complex exponentials evaluated at once when a block of states is sampled.
+BLOCK_CELLS = 2**21
+
+
+def exact_block(system: RampSystem, size: int = 1) -> PeriodicBlock:
+    """The closed form for every row of a block of ``size`` rows (a
+    :class:`RampSystem` whose arrays carry one leading axis of rows, or none where
+    a number is shared by every row)."""
+    n = system.size
+    m = np.broadcast_shapes(
+        np.shape(system.mass)[:-2],
+        np.shape(system.damping)[:-2],
+        np.shape(system.stiffness)[:-2],
+        np.shape(system.constant)[:-1],
+        np.shape(system.shape)[:-1],
+        np.shape(system.start),
+        np.shape(system.slope),
+        np.shape(system.period),
+        (size,),
+    )[0]
+
+    def rows(x: Any, tail: tuple[int, ...]) -> np.ndarray:
+        return np.broadcast_to(np.asarray(x, dtype=float), (m, *tail))
+
+    k, c = rows(system.stiffness, (n, n)), rows(system.damping, (n, n))
+    shape, t = rows(system.shape, (n,)), rows(system.period, ())
+    b = np.linalg.solve(k, (shape * rows(system.slope, ())[:, None])[..., None])[..., 0]
+    force = rows(system.constant, (n,)) + shape * rows(system.start, ())[:, None]
+    a = np.linalg.solve(k, (force - (c @ b[..., None])[..., 0])[..., None])[..., 0]
+    p0 = np.concatenate([a, b], axis=-1)
+    p1 = np.concatenate([b, np.zeros((m, n))], axis=-1)
+    first = replace(system, mass=rows(system.mass, (n, n)), damping=c, stiffness=k).first_order()
+    eigenvalues, vectors = np.linalg.eig(first)
+    # complex throughout: an overdamped block's are all real, and numpy says so
+    eigenvalues, vectors = eigenvalues.astype(complex), vectors.astype(complex)
+    failure = np.full(m, SOLVED)
+    with np.errstate(all="ignore"):
+        failure[~(np.linalg.cond(vectors) <= 1e12)] = UNSEPARATED
+    # The particular solution holds K⁻¹: a mode much slower than the load (|λ|T ≪ 1)
+    # makes it and the modal part cancel, losing about ε/(λT)² of the result.
+    slow = np.min(np.abs(eigenvalues), axis=-1) * t
+    failure[(failure == SOLVED) & (slow < 1.5e-4)] = AS_GOOD_AS_FREE  # ε/(λT)² > 1e-8
+    # 1 - e^{λT} by expm1: a mode much slower than the load (λT → 0) has a large
+    # but finite periodic part; only e^{λT} = 1 with λT ≠ 0 (λT = 2πim) is a resonance
+    gap = -np.expm1(eigenvalues * t[:, None])
+    failure[(failure == SOLVED) & np.any(_resonant(gap, eigenvalues * t[:, None]), axis=-1)] = (
+        RESONANT
+    )
+    solved = failure == SOLVED
+    vectors = np.where(solved[:, None, None], vectors, np.eye(2 * n))  # no singular solve
+    gap = np.where(solved[:, None], gap, 1.0)
+    modal = np.linalg.solve(vectors, p1.astype(complex)[..., None])[..., 0]
+    return PeriodicBlock(t, eigenvalues, vectors, t[:, None] * modal / gap, p0, p1, failure)
+
+
+def _resonant(gap: np.ndarray, turns: np.ndarray) -> np.ndarray:
+    """e^{λT} = 1 to round-off with λT ≠ 0: λT carries a round-off of about
+    ε·|λT|, so the gap is compared with that, not with 0."""
+    turns = np.abs(turns)
+    return (np.abs(gap) <= 1e-12 * np.maximum(1.0, turns)) & (turns > math.pi)
+
+
+def _failure(code: int, eigenvalues: np.ndarray, t: float) -> ArithmeticError:
+    magnitudes = np.abs(eigenvalues)
+    if code == UNSEPARATED:
+        return Unresolved(
             f"the modes cannot be separated (|λ| from {np.min(magnitudes):.3g} to "
             f"{np.max(magnitudes):.3g} 1/s, or a mode damped exactly critically): "
             "outside the range the closed form solves"
         )
-    # The particular solution holds K⁻¹: a mode much slower than the load (|λ|T ≪ 1)
-    # makes it and the modal part cancel, losing about ε/(λT)² of the result.
-    slow = float(np.min(np.abs(eigenvalues))) * t
-    if slow < 1.5e-4:  # ε/(λT)² > 1e-8
-        raise Unresolved(
-            f"a mode at {float(np.min(np.abs(eigenvalues))):.3g} rad/s is "
+    if code == AS_GOOD_AS_FREE:
+        slow = float(np.min(magnitudes)) * t
+        return Unresolved(
+            f"a mode at {float(np.min(magnitudes)):.3g} rad/s is "
             f"{2.0 * math.pi / max(slow, 1e-300):.3g} times slower than the load's "
             f"fundamental {2.0 * math.pi / t:.6g} rad/s: the system is as good as free, "
             "and the closed form would lose more than 8 digits; outside the range solved"
         )
-    # 1 - e^{λT} by expm1: a mode much slower than the load (λT → 0) has a large
-    # but finite periodic part; only e^{λT} = 1 with λT ≠ 0 (λT = 2πim) is a resonance
-    gap = -np.expm1(eigenvalues * t)
-    # λT carries a round-off of about ε·|λT|: compare the gap with that, not with 0
-    turns = np.abs(eigenvalues * t)
-    resonant = (np.abs(gap) <= 1e-12 * np.maximum(1.0, turns)) & (turns > math.pi)
-    if np.any(resonant):
-        index = int(np.argmax(resonant))
-        order = abs(eigenvalues[index].imag) * t / (2.0 * math.pi)
-        raise Unbounded(
-            f"undamped resonance: a natural frequency {abs(eigenvalues[index].imag):.6g} rad/s "
-            f"is {order:.0f} × the excitation's fundamental {2.0 * math.pi / t:.6g} rad/s; "
-            "the periodic amplitude is unbounded"
-        )
-    coefficients = t * np.linalg.solve(vectors, p1.astype(complex)) / gap
-    return Periodic(t, eigenvalues, vectors, coefficients, p0, p1)
+    index = int(np.argmax(_resonant(-np.expm1(eigenvalues * t), eigenvalues * t)))
+    order = abs(eigenvalues[index].imag) * t / (2.0 * math.pi)
+    return Unbounded(
+        f"undamped resonance: a natural frequency {abs(eigenvalues[index].imag):.6g} rad/s "
+        f"is {order:.0f} × the excitation's fundamental {2.0 * math.pi / t:.6g} rad/s; "
+        "the periodic amplitude is unbounded"
+    )
+
+
+def exact_periodic(system: RampSystem) -> Periodic:
+    """The closed form of one system: a block of one."""
+    batch = replace(
+        system,
+        mass=system.mass[None],
+        damping=system.damping[None],
+        stiffness=system.stiffness[None],
+        constant=system.constant[None],
+        shape=system.shape[None],
+        start=np.array([system.start]),
+        slope=np.array([system.slope]),
+        period=np.array([system.period]),
+    )
+    return exact_block(batch).row(0)
 
 
 # --------------------------------------------------------------------- Fourier
@@ -240,11 +413,21 @@ class PeriodicMaximum:
 def samples_for(period: float, fastest: float) -> tuple[int, bool]:
     """Samples per load period that give every mode of |λ| ≤ ``fastest`` 16 samples
     per its period (a power of two, at least 256, at most 2²⁰)."""
+    samples, resolved = _samples(np.array([period]), np.array([fastest]))
+    return int(samples[0]), bool(resolved[0])
+
+
+def _samples(period: np.ndarray, fastest: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`samples_for` of every row: the least power of two from 256 to 2²⁰ at or
+    above the wanted count."""
     wanted = SAMPLES_PER_MODE_PERIOD * fastest * period / (2.0 * math.pi)
-    samples = 256
-    while samples < wanted and samples < MAX_SAMPLES:
-        samples *= 2
-    return samples, samples >= wanted
+    with np.errstate(all="ignore"):
+        power = np.ceil(np.log2(np.clip(wanted, 256.0, float(MAX_SAMPLES))))
+    samples = np.exp2(power)
+    # log2 rounds: one step up or down where it missed the least power of two
+    samples = np.where((samples < wanted) & (samples < MAX_SAMPLES), 2.0 * samples, samples)
+    samples = np.where((0.5 * samples >= wanted) & (samples > 256), 0.5 * samples, samples)
+    return samples.astype(np.int64), samples >= wanted
 
 
 def periodic_maximum(
@@ -255,7 +438,34 @@ def periodic_maximum(
     sampled: np.ndarray | None = None,
     candidates: int = 4096,
 ) -> tuple[float, float]:
-    """Largest value of a smooth periodic function over [0, T).
+    """Largest value of one smooth periodic function over [0, T): :func:`periodic_maxima`
+    on a block of one."""
+    values, times = periodic_maxima(
+        lambda rows, tau: observe(tau.ravel()).reshape(tau.shape),
+        lambda rows, tau: rate(tau.ravel()).reshape(tau.shape),
+        np.array([period]),
+        samples,
+        np.array([0]),
+        None if sampled is None else sampled[None, :],
+        candidates,
+    )
+    return float(values[0]), float(times[0])
+
+
+Sampler = Callable[[np.ndarray, np.ndarray], np.ndarray]  # (rows (k,), τ (k, s)) -> (k, s)
+
+
+def periodic_maxima(
+    observe: Sampler,
+    rate: Sampler,
+    period: np.ndarray,
+    samples: int,
+    rows: np.ndarray,
+    sampled: np.ndarray | None = None,
+    candidates: int = 4096,
+) -> tuple[np.ndarray, np.ndarray]:
+    """Largest value of a smooth periodic function over [0, T) for each of a block
+    of rows (``rows`` names them to ``observe`` and ``rate``): values and times.
 
     Every sampled local maximum within reach of the best sample is refined, all at
     once, by bisection on the derivative between its neighbours (times taken modulo
@@ -263,33 +473,44 @@ def periodic_maximum(
     of the fastest mode a sample lies at most 1 - cos(π/16) ≈ 2 % of that mode's
     amplitude below its peak, so peaks more than 5 % of the sampled range below the
     best cannot win; when many ringing peaks tie, all of them are refined (up to
-    ``candidates``, the largest first)."""
-    tau = np.arange(samples) * (period / samples)
-    values = observe(tau) if sampled is None else sampled
-    left, right = np.roll(values, 1), np.roll(values, -1)
-    peaks = np.flatnonzero((values >= left) & (values >= right))
-    top = int(np.argmax(values))
-    if len(peaks) == 0:  # flat: every sample ties
-        peaks = np.array([top])
-    margin = 0.05 * float(np.max(values) - np.min(values))
-    peaks = peaks[values[peaks] >= values[top] - margin]
-    peaks = peaks[np.argsort(values[peaks])[::-1][:candidates]]
-    best_value, best_time = float(values[top]), float(tau[top])
-    h = period / samples
-    low, high = tau[peaks] - h, tau[peaks] + h
-    inside = (rate(low % period) > 0.0) & (rate(high % period) < 0.0)
-    low, high = low[inside], high[inside]
-    if len(low) == 0:
+    ``candidates`` a row, the largest first)."""
+    line = np.arange(len(rows))
+    tau = np.arange(samples)[None, :] * (period / samples)[:, None]
+    values = observe(rows, tau) if sampled is None else sampled
+    left, right = np.roll(values, 1, axis=1), np.roll(values, -1, axis=1)
+    peaks = (values >= left) & (values >= right)
+    top = np.argmax(values, axis=1)
+    flat = ~np.any(peaks, axis=1)  # flat: every sample ties
+    peaks[line[flat], top[flat]] = True
+    best_value, best_time = values[line, top], tau[line, top]
+    margin = 0.05 * (np.max(values, axis=1) - np.min(values, axis=1))
+    peaks &= values >= (best_value - margin)[:, None]
+    for i in np.flatnonzero(np.sum(peaks, axis=1) > candidates):  # many ringing ties
+        found = np.flatnonzero(peaks[i])
+        peaks[i] = False
+        peaks[i, found[np.argsort(values[i, found])[::-1][:candidates]]] = True
+    owner, where = np.nonzero(peaks)
+    h, p = (period / samples)[owner], period[owner]
+    low, high = tau[owner, where] - h, tau[owner, where] + h
+
+    def rising(at: np.ndarray) -> np.ndarray:
+        return rate(rows[owner], (at % p)[:, None])[:, 0] > 0.0
+
+    inside = rising(low) & (rate(rows[owner], (high % p)[:, None])[:, 0] < 0.0)
+    owner, low, high, p = owner[inside], low[inside], high[inside], p[inside]
+    if len(owner) == 0:
         return best_value, best_time
     for _ in range(40):  # the bracket shrinks to 2⁻⁴⁰ of a sample step
         middle = 0.5 * (low + high)
-        rising = rate(middle % period) > 0.0
-        low, high = np.where(rising, middle, low), np.where(rising, high, middle)
-    middle = (0.5 * (low + high)) % period
-    refined = observe(middle)
-    k = int(np.argmax(refined))
-    if float(refined[k]) > best_value:
-        best_value, best_time = float(refined[k]), float(middle[k])
+        up = rising(middle)
+        low, high = np.where(up, middle, low), np.where(up, high, middle)
+    middle = (0.5 * (low + high)) % p
+    refined = observe(rows[owner], middle[:, None])[:, 0]
+    order = np.lexsort((-refined, owner))  # each row's best refined peak first
+    first = order[np.r_[True, owner[order][1:] != owner[order][:-1]]]
+    better = refined[first] > best_value[owner[first]]
+    best_value[owner[first][better]] = refined[first][better]
+    best_time[owner[first][better]] = middle[first][better]
     return best_value, best_time
 
 
@@ -308,6 +529,9 @@ def maximum_of(
     candidates = 4096
     if isinstance(solution, FourierSeries):
         candidates = max(16, min(4096, 20_000 // solution.harmonics))
+    if isinstance(solution, Periodic):  # the block path, on a block of one
+        values, times, _, _ = solution.block().maxima(w, np.array([fastest]))
+        return PeriodicMaximum(float(values[0]), float(times[0]), samples, resolved)
     value, time = periodic_maximum(
         lambda tau: solution.observe(w, tau),
         lambda tau: solution.rate(w, tau),

@@ -39,6 +39,7 @@ class Floats:
     exp = staticmethod(math.exp)
     log = staticmethod(math.log)
     log1p = staticmethod(math.log1p)
+    expm1 = staticmethod(math.expm1)
     cos = staticmethod(math.cos)
     sin = staticmethod(math.sin)
     tan = staticmethod(math.tan)
@@ -71,6 +72,7 @@ class Arrays:
         self.exp = np.exp
         self.log = np.log
         self.log1p = np.log1p
+        self.expm1 = np.expm1
         self.cos = np.cos
         self.sin = np.sin
         self.tan = np.tan

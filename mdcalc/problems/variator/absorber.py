@@ -179,3 +179,43 @@ def _minima(s: AbsorberScene) -> tuple[np.ndarray, np.ndarray]:
             break
     at = 0.5 * (a + b)
     return np.where(inside, value(at), np.nan), np.where(inside, at, np.nan)
+
+
+def absorber_values(a: Absorber, size: int) -> tuple[dict[str, Any], Any] | None:
+    """Every number of the absorber's sections over a block of ``size`` scenes, by
+    result key, and the samples at an undamped resonance of the two-disk system (no
+    answer). None when some samples are damped and some not (their sections
+    differ: solved point by point)."""
+    s = absorber_scene(a)
+    declined = np.broadcast_to(s.determinant_is_zero(s.omega), (size,))
+    low, high = s.resonances()
+    try:
+        a1, a2 = s.amplitudes(s.omega)
+    except ZeroDivisionError:  # Δ shared by the rows, and 0: every row declined
+        a1 = a2 = np.full(size, np.nan)
+    static = s.m0 / s.c
+    values: dict[str, Any] = {
+        "absorber_stiffness": s.cg,
+        "absorber_tuning": np.sqrt(s.cg / s.j2),
+        "absorber_partial": np.sqrt(s.c / s.j1),
+        "absorber_resonance_low": low,
+        "absorber_resonance_high": high,
+        "absorber_a1": np.abs(a1),
+        "absorber_a2": np.abs(a2),
+        "absorber_moment": np.abs((s.cg + 1j * (s.omega * s.bg)) * (a2 - a1)),
+        "absorber_static": static,
+        "absorber_untuned": s.untuned(s.omega),
+    }
+    undamped = np.broadcast_to(np.asarray(s.bg) == 0.0, (size,))
+    if undamped.all():
+        values["absorber_band_low"], values["absorber_band_high"] = s.band()
+    elif not undamped.any():
+        depth, where = absorber_minima(s, size)
+        values |= {
+            "absorber_minimum": depth,
+            "absorber_minimum_frequency": where,
+            "absorber_minimum_depth": depth / static,
+        }
+    else:
+        return None
+    return values, declined

@@ -72,7 +72,9 @@ class Motor(CaseModel):
 
     @property
     def synchronous(self) -> float:
-        return self.synchronous_speed_rpm or 60.0 * self.mains_frequency / self.pole_pairs
+        if self.synchronous_speed_rpm is not None:  # (a float, or a study's array)
+            return self.synchronous_speed_rpm
+        return 60.0 * self.mains_frequency / self.pole_pairs
 
 
 class Clutch(CaseModel):
@@ -115,7 +117,8 @@ class Clutch(CaseModel):
     def c0(self) -> float:
         if self.loading_coefficient is not None:
             return self.loading_coefficient
-        return (self.loading_coefficient_kgfm or 0.0) * KGF_M
+        assert self.loading_coefficient_kgfm is not None  # exactly one is given
+        return self.loading_coefficient_kgfm * KGF_M
 
     @property
     def unloading(self) -> float | None:
@@ -139,7 +142,10 @@ class Mechanism(CaseModel):
 
     @property
     def ratio(self) -> float:
-        return self.mean_ratio or self.input_speed_rpm / (self.output_speed_rpm or 1.0)
+        if self.mean_ratio is not None:  # (a float, or a study's array)
+            return self.mean_ratio
+        assert self.output_speed_rpm is not None  # exactly one of the two is given
+        return self.input_speed_rpm / self.output_speed_rpm
 
 
 class Drive(CaseModel):
@@ -184,7 +190,8 @@ class Drive(CaseModel):
     def stiffness(self) -> float:
         if self.clutch_stiffness is not None:
             return self.clutch_stiffness
-        return (self.clutch_stiffness_kgfm or 0.0) * KGF_M
+        assert self.clutch_stiffness_kgfm is not None  # exactly one is given
+        return self.clutch_stiffness_kgfm * KGF_M
 
 
 class Antiresonance(CaseModel):

@@ -1,10 +1,13 @@
 """7e, 7f: the clutch deformation in the periodic state of the two-mass drive, χ
-(8.47), and the three-mass anti-resonance design."""
+(8.47), and the three-mass anti-resonance design. A scene's numbers are floats, or
+numpy arrays over a block of scenes (a study's samples): the systems are then one
+per row, solved together by :func:`~mdcalc.core.periodic.exact_block`."""
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -20,27 +23,27 @@ EVALUATION_BUDGET = 200_000
 
 @dataclass(frozen=True)
 class DriveScene:
-    omega: float  # input speed [rad/s]
+    omega: Any  # input speed [rad/s]
     transfer: Transfer
-    inertia: float  # J of the two-mass model (J₂, or J₂ + i²J₃) [kg·m²]
-    stiffness: float  # c₁ [N·m/rad]
-    damping: float  # b₁ [N·m·s/rad]
-    load: float  # M_c [N·m]
+    inertia: Any  # J of the two-mass model (J₂, or J₂ + i²J₃) [kg·m²]
+    stiffness: Any  # c₁ [N·m/rad]
+    damping: Any  # b₁ [N·m·s/rad]
+    load: Any  # M_c [N·m]
 
     @property
-    def period(self) -> float:
+    def period(self) -> Any:
         return self.transfer.stroke / self.omega
 
     @property
-    def fundamental(self) -> float:
+    def fundamental(self) -> Any:
         """Ω = zω = 2π/T [rad/s]."""
         return 2.0 * math.pi / self.period
 
     @property
-    def static(self) -> float:
+    def static(self) -> Any:
         return self.load / self.stiffness
 
-    def excitation(self) -> tuple[float, float]:
+    def excitation(self) -> tuple[Any, Any]:
         """u = ω²·Π″(α) = 2a₀ω²·(ωτ - Δα/2) over τ in [0, T): u₀ and du/dτ."""
         a0, w = self.transfer.a0, self.omega
         return -a0 * w * w * self.transfer.stroke, 2.0 * a0 * w**3
@@ -49,11 +52,11 @@ class DriveScene:
         u0, u1 = self.excitation()
         j = self.inertia
         return periodic.RampSystem(
-            np.array([[j]]),
-            np.array([[self.damping]]),
-            np.array([[self.stiffness]]),
-            np.array([self.load]),
-            np.array([j]),
+            _matrix([j]),
+            _matrix([self.damping]),
+            _matrix([self.stiffness]),
+            _vector(self.load),
+            _vector(j),
             u0,
             u1,
             self.period,
@@ -63,41 +66,107 @@ class DriveScene:
 @dataclass(frozen=True)
 class ThreeMass:
     drive: DriveScene  # with J₂ only
-    j3: float  # reduced J₃' = i²J₃
-    c2: float  # reduced c₂'
-    b2: float  # reduced b₂'
-    ratio: float  # i
+    j3: Any  # reduced J₃' = i²J₃
+    c2: Any  # reduced c₂'
+    b2: Any  # reduced b₂'
+    ratio: Any  # i
 
     def system(self) -> periodic.RampSystem:
         d = self.drive
         u0, u1 = d.excitation()
         j2, j3, c1, b1, c2, b2 = d.inertia, self.j3, d.stiffness, d.damping, self.c2, self.b2
         return periodic.RampSystem(
-            np.array([[j2, 0.0], [j3, j3]]),
-            np.array([[b1, -b2], [0.0, b2]]),
-            np.array([[c1, -c2], [0.0, c2]]),
-            np.array([0.0, d.load]),
-            np.array([j2, j3]),
+            _matrix([j2, 0.0], [j3, j3]),
+            _matrix([b1, -b2], [0.0, b2]),
+            _matrix([c1, -c2], [0.0, c2]),
+            _vector(0.0, d.load),
+            _vector(j2, j3),
             u0,
             u1,
             d.period,
         )
 
     @property
-    def antiresonance(self) -> float:
+    def antiresonance(self) -> Any:
         """Where the clutch carries no load: √(c₂'(J₂ + J₃')/(J₂J₃')) [rad/s]."""
         j2 = self.drive.inertia
-        return math.sqrt(self.c2 * (j2 + self.j3) / (j2 * self.j3))
+        return np.sqrt(self.c2 * (j2 + self.j3) / (j2 * self.j3))
 
-    def natural_frequencies(self) -> tuple[float, float]:
+    def natural_frequencies(self) -> tuple[Any, Any]:
         """Undamped, of q₁ and q₂ with the driver held [rad/s]."""
         s = self.system()
-        values = np.linalg.eigvals(np.linalg.solve(s.mass, s.stiffness)).real
-        low, high = sorted(float(v) for v in values)
-        return math.sqrt(low), math.sqrt(high)
+        values = np.sort(np.linalg.eigvals(np.linalg.solve(s.mass, s.stiffness)).real, axis=-1)
+        return np.sqrt(values[..., 0]), np.sqrt(values[..., 1])
+
+    def coupling(self) -> np.ndarray:
+        """The observable c₂'·q₂ + b₂'·q₂' of the coupling's moment."""
+        return _vector(0.0, self.c2, 0.0, self.b2)
+
+
+def _vector(*entries: Any) -> np.ndarray:
+    """A vector of entries that are floats (a scene) or arrays over a block's rows
+    (then one vector per row, on a leading axis)."""
+    return np.stack(np.broadcast_arrays(*[np.asarray(e, dtype=float) for e in entries]), axis=-1)
+
+
+def _matrix(*rows: list[Any]) -> np.ndarray:
+    """A matrix of such entries (one per row of a block, on a leading axis)."""
+    flat = _vector(*[e for row in rows for e in row])
+    return flat.reshape(*flat.shape[:-1], len(rows), len(rows[0]))
+
+
+def drive_values(d: DriveScene, q_max: Any) -> dict[str, Any]:
+    """Every number of the two-mass model's section, by result key, from its
+    periodic state's largest clutch deformation q_max."""
+    beta = np.sqrt(d.stiffness / d.inertia)
+    u0, _ = d.excitation()
+    return {
+        "drive_inertia": d.inertia,
+        "drive_stiffness": d.stiffness,
+        "drive_damping": d.damping,
+        "drive_fundamental": d.fundamental,
+        "drive_natural": beta,
+        "drive_frequency_ratio": beta / d.fundamental,
+        "drive_acceleration": d.inertia * abs(u0),
+        "drive_static": d.static,
+        "drive_q_max": q_max,
+        "drive_chi": q_max / d.static,
+        "drive_moment_max": d.stiffness * q_max,
+    }
+
+
+def three_mass_values(
+    three: ThreeMass, before: Any, clutch: Any, coupling: Any, kept: Any = None
+) -> dict[str, Any]:
+    """Every number of the anti-resonance design's section, by result key: from the
+    largest clutch deformation of the two-mass model (``before``) and of the
+    three-mass one (``clutch``), the coupling's largest moment (reduced), and χ had
+    the clutch kept the two-mass model's damping (``kept``, where it differs)."""
+    d, i = three.drive, three.ratio
+    low, high = three.natural_frequencies()
+    chi_before, chi_after = before / d.static, clutch / d.static
+    values = {
+        "antiresonance_machine": three.j3,
+        "antiresonance_coupling": three.c2 / i**2,
+        "antiresonance_frequency": three.antiresonance,
+        "antiresonance_natural_low": low,
+        "antiresonance_natural_high": high,
+        "antiresonance_chi_before": chi_before,
+        "antiresonance_chi_after": chi_after,
+        "antiresonance_reduction": (chi_before - 1.0) / (chi_after - 1.0),
+        "antiresonance_chi_ratio": chi_before / chi_after,
+        "antiresonance_coupling_max": coupling / i,
+        "antiresonance_coupling_factor": coupling / d.load,
+        "antiresonance_clutch_damping": d.damping,
+    }
+    if kept is not None:
+        values["antiresonance_chi_after_kept_damping"] = kept
+        values["antiresonance_reduction_kept_damping"] = (chi_before - 1.0) / (kept - 1.0)
+    return values
 
 
 CLUTCH = np.array([1.0, 0.0])  # q of the two-mass state (q, q')
+CLUTCH_OF_THREE = np.array([1.0, 0.0, 0.0, 0.0])  # q₁ of the three-mass state
 
 
 def _drive_methods(

@@ -1,7 +1,9 @@
-"""The vectorized kernel of ``mdcalc sweep`` and ``mdcalc study`` for the
-anti-resonance absorber (7a): every numeric result of its sections over a block of
-scenes, by the :class:`~.absorber.AbsorberScene` methods the single scene runs (on
-floats there, on arrays here) and :func:`~.absorber.absorber_minima`."""
+"""The vectorized kernel of ``mdcalc sweep`` and ``mdcalc study``: every numeric
+result of every section over a block of scenes, by the functions the single scene
+runs (on floats there, on arrays here): the absorber's
+:class:`~.absorber.AbsorberScene` methods and :func:`~.absorber.absorber_minima`,
+the closed forms of the motor, clutch, mechanism and pendulum, and the drive's
+periodic states, one per row, by :func:`~mdcalc.core.periodic.exact_block`."""
 
 from __future__ import annotations
 
@@ -9,7 +11,6 @@ from collections.abc import Collection
 from typing import Any
 
 from mdcalc.input.model import kernel_answer, with_values
-from mdcalc.problems.variator.absorber import absorber_minima, absorber_scene
 from mdcalc.problems.variator.case import Case
 
 #: Keys ``mdcalc sweep`` and ``mdcalc study`` may vary in the vectorized form.
@@ -22,60 +23,104 @@ SWEEP_KEYS = {
     "absorber.absorber_damping": "b_g",
     "absorber.torque_amplitude": "M₀",
     "absorber.frequency": "ω",
+    "motor.mains_frequency": "f_c",
+    "motor.pole_pairs": "P",
+    "motor.synchronous_speed_rpm": "n",
+    "motor.nominal_speed_rpm": "n_H",
+    "motor.nominal_torque": "M_H",
+    "motor.nominal_power": "P_H",
+    "motor.overload_ratio": "λ_m",
+    "clutch.loading_coefficient": "c₀",
+    "clutch.loading_coefficient_kgfm": "c₀ [kgf·m]",
+    "clutch.loading_exponent": "n",
+    "clutch.load_min": "M_min",
+    "clutch.load_max": "M_max",
+    "clutch.unloading_stiffness": "c",
+    "clutch.unloading_stiffness_kgfm": "c [kgf·m]",
+    "clutch.loop_area_ratio": "ψ",
+    "mechanism.mechanisms": "z",
+    "mechanism.input_speed_rpm": "n₁",
+    "mechanism.mean_ratio": "i_c",
+    "mechanism.output_speed_rpm": "n₂",
+    "drive.driven_inertia": "J₂",
+    "drive.load_torque": "M_c",
+    "drive.clutch_stiffness": "c",
+    "drive.clutch_stiffness_kgfm": "c [kgf·m]",
+    "drive.clutch_damping": "b",
+    "drive.clutch_loop_area_ratio": "ψ",
+    "antiresonance.machine_inertia": "J₃",
+    "antiresonance.ratio": "i",
+    "antiresonance.coupling_stiffness": "c₂",
+    "antiresonance.coupling_damping": "b₂",
+    "pendulum.pivot_radius": "R",
+    "pendulum.order": "n",
+    "pendulum.speed": "ω",
+    "pendulum.speed_rpm": "n",
+    "pendulum.inertia_torque": "M_ин",
+    "pendulum.max_swing": "θ_max",
+    "pendulum.bob_density": "ρ",
+    "pendulum.bifilar_pin_diameter": "d",
 }
-
-#: The sections this kernel covers; a case with any other (the motor, the clutch,
-#: the mechanism and its periodic states, the pendulum) runs point by point.
-OTHER_SECTIONS = ("motor", "clutch", "mechanism", "drive", "antiresonance", "pendulum")
 
 
 def sweep(
     case: Case, grid: dict[str, Any], wanted: Collection[str] | None = None
 ) -> dict[str, Any] | None:
-    """Every numeric result of an absorber scene over a block (numpy). A sample at an
-    undamped resonance of the two-disk system (no answer) is marked ``DECLINED``, to
-    be solved alone. None for another key, a case without ``[absorber]``, or one
-    with another section."""
+    """Every numeric result of the case's sections over a block (numpy); with
+    ``wanted``, only the sections those keys come from. A sample without an answer
+    (an undamped resonance of the absorber or of the drive, a drive outside the
+    closed form's range) is marked ``DECLINED``, to be solved alone. None for a key
+    the case does not hold (one that would switch an alternative: c_g or its tuning,
+    M_H or P_H), or an absorber some of whose samples are damped and some not."""
     import numpy as np
 
-    if any(key not in SWEEP_KEYS for key in grid) or case.absorber is None:
+    if any(key not in SWEEP_KEYS or _held(case, key) is None for key in grid):
         return None
-    if any(getattr(case, name) is not None for name in OTHER_SECTIONS):
-        return None
-    given = case.absorber
-    if any(getattr(given, key.split(".")[1]) is None for key in grid):
-        return None  # a key that switches an alternative (c_g or its tuning)
     arrays = with_values(case, {key: np.asarray(v, dtype=float) for key, v in grid.items()})
     size = max([np.size(v) for v in grid.values()] + [1])
-    assert arrays.absorber is not None
-    s = absorber_scene(arrays.absorber)
+
+    def asked(prefix: str) -> bool:
+        return wanted is None or any(key.startswith(prefix) for key in wanted)
+
+    values: dict[str, Any] = {}
+    declined: Any = np.zeros(size, dtype=bool)
     with np.errstate(all="ignore"):
-        declined = np.broadcast_to(s.determinant_is_zero(s.omega), (size,))
-        low, high = s.resonances()
-        a1, a2 = s.amplitudes(s.omega)
-        static = s.m0 / s.c
-        values: dict[str, Any] = {
-            "absorber_stiffness": s.cg,
-            "absorber_tuning": np.sqrt(s.cg / s.j2),
-            "absorber_partial": np.sqrt(s.c / s.j1),
-            "absorber_resonance_low": low,
-            "absorber_resonance_high": high,
-            "absorber_a1": np.abs(a1),
-            "absorber_a2": np.abs(a2),
-            "absorber_moment": np.abs((s.cg + 1j * (s.omega * s.bg)) * (a2 - a1)),
-            "absorber_static": static,
-            "absorber_untuned": s.untuned(s.omega),
-        }
-        undamped = np.broadcast_to(np.asarray(s.bg) == 0.0, (size,))
-        if undamped.all():
-            values["absorber_band_low"], values["absorber_band_high"] = s.band()
-        elif not undamped.any():
-            depth, where = absorber_minima(s, size)
-            values |= {
-                "absorber_minimum": depth,
-                "absorber_minimum_frequency": where,
-                "absorber_minimum_depth": depth / static,
-            }
-        else:
-            return None  # some samples undamped, some damped: point by point
+        if arrays.absorber is not None:  # (its resonances decide the status)
+            from mdcalc.problems.variator.absorber import absorber_values
+
+            found = absorber_values(arrays.absorber, size)
+            if found is None:
+                return None
+            if asked("absorber_"):
+                values |= found[0]
+            declined = declined | found[1]
+        if arrays.motor is not None and asked("motor_"):
+            from mdcalc.problems.variator.motor import motor_values
+
+            values |= motor_values(arrays.motor)
+        if arrays.clutch is not None and asked("clutch_"):
+            from mdcalc.problems.variator.clutch import clutch_values
+
+            values |= clutch_values(arrays.clutch)
+        if arrays.mechanism is not None and asked("mechanism_"):
+            from mdcalc.problems.variator.transfer import mechanism_values
+
+            values |= mechanism_values(arrays.mechanism)
+        if arrays.drive is not None:  # (its periodic states decide the status)
+            from mdcalc.problems.variator.solve import drive_block
+
+            found = drive_block(arrays, size, asked)
+            values |= found[0]
+            declined = declined | found[1]
+        if arrays.pendulum is not None and asked("pendulum_"):
+            from mdcalc.problems.variator.pendulum import pendulum_values
+
+            values |= pendulum_values(arrays.pendulum)
     return kernel_answer(values, declined, size)
+
+
+def _held(case: Case, key: str) -> Any:
+    """The case's value at ``key``: None where its section or field is not given."""
+    section, name = key.split(".")
+    part = getattr(case, section)
+    return None if part is None else getattr(part, name)

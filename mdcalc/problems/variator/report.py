@@ -8,16 +8,15 @@ from typing import Any
 import numpy as np
 
 from mdcalc.core import periodic
-from mdcalc.core.units import rpm_to_rad_s
 from mdcalc.output.report import Column, Note, Quantities, Quantity, Report, Table
 from mdcalc.problems.variator.absorber import AbsorberScene, absorber_minimum
 from mdcalc.problems.variator.case import KGF_M, Clutch, Drive, Mechanism, Motor, Pendulum
-from mdcalc.problems.variator.clutch import clutch_lines
-from mdcalc.problems.variator.drive import CLUTCH
-from mdcalc.problems.variator.motor import motor_models
-from mdcalc.problems.variator.pendulum import agm
+from mdcalc.problems.variator.clutch import clutch_lines, clutch_values
+from mdcalc.problems.variator.drive import CLUTCH, drive_values, three_mass_values
+from mdcalc.problems.variator.motor import motor_models, motor_values
+from mdcalc.problems.variator.pendulum import pendulum_values
 from mdcalc.problems.variator.solve import Result
-from mdcalc.problems.variator.transfer import transfer_of
+from mdcalc.problems.variator.transfer import mechanism_values, transfer_of
 
 
 def report(result: Result) -> Report:
@@ -178,52 +177,53 @@ def _absorber_curve(s: AbsorberScene, high: float, points: int) -> Table:
 
 
 def _motor_sections(m: Motor, result: Result) -> list[Any]:
-    omega_c, omega_0, models = motor_models(m)
-    kloss, seed, printed = models
-    torque = m.nominal_torque or (m.nominal_power or 0.0) / rpm_to_rad_s(m.nominal_speed_rpm)
+    _, _, (kloss, _, printed) = motor_models(m)
+    v = motor_values(m)
     items = [
-        Quantity("motor_mains", "ω_c = 2π·f_c", omega_c, "rad/s"),
-        Quantity("motor_field_speed", "ω₀ = ω_c/P", omega_0, "rad/s"),
-        Quantity("motor_synchronous_rpm", "Synchronous speed n", m.synchronous, "rpm"),
-        Quantity("motor_nominal_torque", "M_H", torque, "N·m"),
-        Quantity("motor_critical_torque", "M_K = λ_m·M_H", m.overload_ratio * torque, "N·m"),
+        Quantity("motor_mains", "ω_c = 2π·f_c", v["motor_mains"], "rad/s"),
+        Quantity("motor_field_speed", "ω₀ = ω_c/P", v["motor_field_speed"], "rad/s"),
+        Quantity("motor_synchronous_rpm", "Synchronous speed n", v["motor_synchronous_rpm"], "rpm"),
+        Quantity("motor_nominal_torque", "M_H", v["motor_nominal_torque"], "N·m"),
+        Quantity("motor_critical_torque", "M_K = λ_m·M_H", v["motor_critical_torque"], "N·m"),
         Quantity(
             "motor_slip",
             "S_H = (n - n_H)/n",
-            kloss.slip,
+            v["motor_slip"],
             "",
             f"the seed's (8.41) divides by n_H: {printed.slip:.5g}",
         ),
         Quantity(
             "motor_critical_slip",
             "S_K, seed's correction",
-            seed.critical_slip,
+            v["motor_critical_slip"],
             "",
             f"plain Kloss: {kloss.critical_slip:.5g}",
         ),
-        Quantity("motor_critical_slip_kloss", "S_K, plain Kloss", kloss.critical_slip, ""),
+        Quantity(
+            "motor_critical_slip_kloss", "S_K, plain Kloss", v["motor_critical_slip_kloss"], ""
+        ),
         Quantity(
             "motor_time_constant",
             "T_D = 1/(ω_c·S_K), seed's correction",
-            seed.time_constant,
+            v["motor_time_constant"],
             "s",
             f"plain Kloss: {kloss.time_constant:.5g} s",
         ),
         Quantity(
             "motor_stiffness",
             "c_D = 1/(T_D·ν·ω₀) = 2·P·M_K",
-            seed.stiffness,
+            v["motor_stiffness"],
             "N·m/rad",
             "the same for every S_K",
         ),
         Quantity(
             "motor_damping",
             "b_D = 1/(ν·ω₀), seed's correction",
-            seed.damping,
+            v["motor_damping"],
             "N·m·s/rad",
             f"plain Kloss: {kloss.damping:.5g}",
         ),
-        Quantity("motor_damping_kloss", "b_D, plain Kloss", kloss.damping, "N·m·s/rad"),
+        Quantity("motor_damping_kloss", "b_D, plain Kloss", v["motor_damping_kloss"], "N·m·s/rad"),
     ]
     assert result.motor_methods is not None
     return [
@@ -233,19 +233,19 @@ def _motor_sections(m: Motor, result: Result) -> list[Any]:
 
 
 def _clutch_section(c: Clutch, drive: Drive | None, notes: list[Note]) -> Quantities:
-    x1, x2, lines = clutch_lines(c)
-    n = c.loading_exponent
+    _, _, lines = clutch_lines(c)
+    v = clutch_values(c)
     items = [
         Quantity(
             "clutch_c0", "c₀ of M = c₀·ξⁿ", c.c0, "N·m/rad^n", f"{c.c0 / KGF_M:.5g} kgf·m/rad^n"
         ),
-        Quantity("clutch_exponent", "n", n, ""),
-        Quantity("clutch_twist_min", "ξ at the lowest working load", x1, "rad"),
-        Quantity("clutch_twist_max", "ξ at the highest working load", x2, "rad"),
+        Quantity("clutch_exponent", "n", v["clutch_exponent"], ""),
+        Quantity("clutch_twist_min", "ξ at the lowest working load", v["clutch_twist_min"], "rad"),
+        Quantity("clutch_twist_max", "ξ at the highest working load", v["clutch_twist_max"], "rad"),
         Quantity(
             "clutch_tangent",
             "Tangent stiffness at the top, n·M_max/ξ_max",
-            n * c.load_max / x2,
+            v["clutch_tangent"],
             "N·m/rad",
         ),
     ]
@@ -288,7 +288,7 @@ def _clutch_section(c: Clutch, drive: Drive | None, notes: list[Note]) -> Quanti
             Quantity(
                 "clutch_damping_ratio",
                 "Damping ratio ζ = ψ/(4π) from the loop (8.43)–(8.44)",
-                psi / (4.0 * math.pi),
+                v["clutch_damping_ratio"],
                 "",
                 f"ψ = {psi:g}; b = ψ/(2π)·√(J·c)",
             )
@@ -308,38 +308,40 @@ def _clutch_section(c: Clutch, drive: Drive | None, notes: list[Note]) -> Quanti
 
 def _mechanism_sections(m: Mechanism) -> list[Any]:
     t = transfer_of(m)
-    mean = t.mean_first()
+    v = mechanism_values(m)
     items = [
         Quantity(
             "mechanism_stroke",
             "Working stroke Δα = 2π/z",
-            t.stroke,
+            v["mechanism_stroke"],
             "rad",
             f"{math.degrees(t.stroke):.4g}°",
         ),
-        Quantity("mechanism_ratio", "Mean ratio i_c", t.ratio, ""),
+        Quantity("mechanism_ratio", "Mean ratio i_c", v["mechanism_ratio"], ""),
         Quantity(
-            "mechanism_output_rpm", "Mean output speed n₁/i_c", m.input_speed_rpm / t.ratio, "rpm"
+            "mechanism_output_rpm", "Mean output speed n₁/i_c", v["mechanism_output_rpm"], "rpm"
         ),
-        Quantity("mechanism_a0", "a₀", t.a0, ""),
-        Quantity("mechanism_b0", "b₀ = Π′max", t.b0, ""),
+        Quantity("mechanism_a0", "a₀", v["mechanism_a0"], ""),
+        Quantity("mechanism_b0", "b₀ = Π′max", v["mechanism_b0"], ""),
         Quantity(
-            "mechanism_first_end", "Π′ at the ends of the stroke", t.first(0.5 * t.stroke), ""
+            "mechanism_first_end", "Π′ at the ends of the stroke", v["mechanism_first_end"], ""
         ),
         Quantity(
             "mechanism_second_end",
             "|Π″| at the ends of the stroke",
-            abs(t.second(0.5 * t.stroke)),
+            v["mechanism_second_end"],
             "1/rad",
         ),
         Quantity(
             "mechanism_mean_first",
             "Mean of Π′ over the stroke",
-            mean,
+            v["mechanism_mean_first"],
             "",
             f"1/i_c = {1.0 / t.ratio:.10g}",
         ),
-        Quantity("mechanism_mean_check", "(mean Π′)·i_c - 1", mean * t.ratio - 1.0, "", "check: 0"),
+        Quantity(
+            "mechanism_mean_check", "(mean Π′)·i_c - 1", v["mechanism_mean_check"], "", "check: 0"
+        ),
     ]
     rows: list[list[Any]] = []
     for k in range(9):
@@ -357,34 +359,33 @@ def _mechanism_sections(m: Mechanism) -> list[Any]:
 def _drive_sections(result: Result, notes: list[Note]) -> list[Any]:
     d, exact = result.drive, result.two_mass
     assert d is not None and exact is not None and result.two_mass_methods is not None
-    beta = math.sqrt(d.stiffness / d.inertia)
     zeta = d.damping / (2.0 * math.sqrt(d.stiffness * d.inertia))
     top = periodic.maximum_of(exact, CLUTCH, exact.fastest)
-    u0, _ = d.excitation()
+    v = drive_values(d, top.value)
     machine = result.three_mass is not None
     items = [
         Quantity(
             "drive_inertia",
             "J of the two-mass model" + (", J₂ + i²J₃" if machine else ""),
-            d.inertia,
+            v["drive_inertia"],
             "kg·m^2",
         ),
-        Quantity("drive_stiffness", "Clutch c", d.stiffness, "N·m/rad"),
-        Quantity("drive_damping", "Clutch b", d.damping, "N·m·s/rad", f"ζ = {zeta:.4g}"),
-        Quantity("drive_fundamental", "Excitation Ω = z·ω", d.fundamental, "rad/s"),
-        Quantity("drive_natural", "β = √(c/J)", beta, "rad/s"),
-        Quantity("drive_frequency_ratio", "β/Ω", beta / d.fundamental, ""),
-        Quantity("drive_acceleration", "Peak of J·ω²·Π″", d.inertia * abs(u0), "N·m"),
-        Quantity("drive_static", "q_c = M_c/c", d.static, "rad"),
-        Quantity("drive_q_max", "q_max", top.value, "rad"),
+        Quantity("drive_stiffness", "Clutch c", v["drive_stiffness"], "N·m/rad"),
+        Quantity("drive_damping", "Clutch b", v["drive_damping"], "N·m·s/rad", f"ζ = {zeta:.4g}"),
+        Quantity("drive_fundamental", "Excitation Ω = z·ω", v["drive_fundamental"], "rad/s"),
+        Quantity("drive_natural", "β = √(c/J)", v["drive_natural"], "rad/s"),
+        Quantity("drive_frequency_ratio", "β/Ω", v["drive_frequency_ratio"], ""),
+        Quantity("drive_acceleration", "Peak of J·ω²·Π″", v["drive_acceleration"], "N·m"),
+        Quantity("drive_static", "q_c = M_c/c", v["drive_static"], "rad"),
+        Quantity("drive_q_max", "q_max", v["drive_q_max"], "rad"),
         Quantity(
             "drive_chi",
             "χ = q_max/q_c (8.47)",
-            top.value / d.static,
+            v["drive_chi"],
             "",
             f"peak at {top.time / d.period * math.degrees(d.transfer.stroke):.4g}° into the stroke",
         ),
-        Quantity("drive_moment_max", "Peak clutch moment c·q_max", d.stiffness * top.value, "N·m"),
+        Quantity("drive_moment_max", "Peak clutch moment c·q_max", v["drive_moment_max"], "N·m"),
     ]
     title = "Two-mass model, periodic state" + (" (before: J₃ rigid on J₂)" if machine else "")
     points = result.case.drive.points if result.case.drive else 13
@@ -413,18 +414,19 @@ def _three_mass_sections(result: Result, notes: list[Note]) -> list[Any]:
     assert three is not None and exact is not None and result.drive is not None
     assert result.two_mass is not None and result.three_mass_methods is not None
     d = three.drive
-    before = periodic.maximum_of(result.two_mass, CLUTCH, result.two_mass.fastest).value / d.static
-    clutch = periodic.maximum_of(exact, np.array([1.0, 0.0, 0.0, 0.0]), exact.fastest).value
-    after = clutch / d.static
-    coupling = periodic.maximum_of(exact, np.array([0.0, three.c2, 0.0, three.b2]), exact.fastest)
-    low, high = three.natural_frequencies()
-    i = three.ratio
+    v = three_mass_values(
+        three,
+        periodic.maximum_of(result.two_mass, CLUTCH, result.two_mass.fastest).value,
+        periodic.maximum_of(exact, np.array([1.0, 0.0, 0.0, 0.0]), exact.fastest).value,
+        periodic.maximum_of(exact, three.coupling(), exact.fastest).value,
+        result.chi_after_kept_damping,
+    )
     items = [
-        Quantity("antiresonance_machine", "J₃' = i²·J₃", three.j3, "kg·m^2"),
+        Quantity("antiresonance_machine", "J₃' = i²·J₃", v["antiresonance_machine"], "kg·m^2"),
         Quantity(
             "antiresonance_coupling",
             "Coupling c₂",
-            three.c2 / i**2,
+            v["antiresonance_coupling"],
             "N·m/rad",
             "tuned: (zω)²·J₂J₃'/(J₂ + J₃')/i²"
             if result.case.antiresonance and result.case.antiresonance.coupling_stiffness is None
@@ -433,59 +435,64 @@ def _three_mass_sections(result: Result, notes: list[Note]) -> list[Any]:
         Quantity(
             "antiresonance_frequency",
             "Clutch anti-resonance √(c₂'(J₂ + J₃')/(J₂J₃'))",
-            three.antiresonance,
+            v["antiresonance_frequency"],
             "rad/s",
             f"excitation Ω = {d.fundamental:.6g} rad/s",
         ),
-        Quantity("antiresonance_natural_low", "Natural frequency, lower", low, "rad/s"),
-        Quantity("antiresonance_natural_high", "Natural frequency, upper", high, "rad/s"),
-        Quantity("antiresonance_chi_before", "χ before (J₃ rigid on J₂)", before, ""),
-        Quantity("antiresonance_chi_after", "χ after", after, ""),
+    ]
+    for key, label, unit in (
+        ("antiresonance_natural_low", "Natural frequency, lower", "rad/s"),
+        ("antiresonance_natural_high", "Natural frequency, upper", "rad/s"),
+        ("antiresonance_chi_before", "χ before (J₃ rigid on J₂)", ""),
+        ("antiresonance_chi_after", "χ after", ""),
+    ):
+        items.append(Quantity(key, label, v[key], unit))
+    items += [
         Quantity(
             "antiresonance_reduction",
             "Dynamic load on the clutch reduced",
-            (before - 1.0) / (after - 1.0),
+            v["antiresonance_reduction"],
             "×",
             "(χ_before - 1)/(χ_after - 1); seed: 30 calculated, 29 measured",
         ),
-        Quantity("antiresonance_chi_ratio", "χ_before/χ_after", before / after, ""),
+        Quantity("antiresonance_chi_ratio", "χ_before/χ_after", v["antiresonance_chi_ratio"], ""),
         Quantity(
             "antiresonance_coupling_max",
             "Peak coupling moment (at the coupling)",
-            coupling.value / i,
+            v["antiresonance_coupling_max"],
             "N·m",
         ),
         Quantity(
             "antiresonance_coupling_factor",
             "Coupling M_max/M_c, the load moved onto c₂",
-            coupling.value / d.load,
+            v["antiresonance_coupling_factor"],
             "",
         ),
-        Quantity("antiresonance_clutch_damping", "Clutch b₁ in this model", d.damping, "N·m·s/rad"),
+        Quantity(
+            "antiresonance_clutch_damping",
+            "Clutch b₁ in this model",
+            v["antiresonance_clutch_damping"],
+            "N·m·s/rad",
+        ),
     ]
-    kept = result.chi_after_kept_damping
-    if kept is not None:
+    if "antiresonance_chi_after_kept_damping" in v:
+        reduction = v["antiresonance_reduction_kept_damping"]
         items += [
             Quantity(
                 "antiresonance_chi_after_kept_damping",
                 "χ after, had the clutch kept b₁ of the two-mass model",
-                kept,
+                v["antiresonance_chi_after_kept_damping"],
                 "",
                 "(8.44) read with J₂ + i²J₃ instead of J₂",
             ),
-            Quantity(
-                "antiresonance_reduction_kept_damping",
-                "Reduction then",
-                (before - 1.0) / (kept - 1.0),
-                "×",
-            ),
+            Quantity("antiresonance_reduction_kept_damping", "Reduction then", reduction, "×"),
         ]
         notes.append(
             Note(
                 "info",
                 "b₁ follows (8.44) with the inertia the clutch faces (J₂ + i²J₃ before, J₂ "
                 f"after); with b₁ kept from the two-mass model the reduction would be "
-                f"{(before - 1.0) / (kept - 1.0):.3g}×",
+                f"{reduction:.3g}×",
             )
         )
     _resolution_note(exact, d.period, notes)
@@ -508,34 +515,38 @@ def _resolution_note(exact: periodic.Periodic, period: float, notes: list[Note])
 
 
 def _pendulum_section(p: Pendulum, notes: list[Note]) -> Quantities:
-    r, n = p.pivot_radius, p.order
-    length = r / (n * n)
+    v = pendulum_values(p)
+    length = v["pendulum_length"]
     items = [
         Quantity(
             "pendulum_length", "Tuned length L = R/n² (8.55)", length, "m", f"{length * 1e3:.4g} mm"
         ),
-        Quantity("pendulum_length_ratio", "L/R", length / r, ""),
+        Quantity("pendulum_length_ratio", "L/R", v["pendulum_length_ratio"], ""),
     ]
-    omega = p.omega
-    if omega is not None:
-        items.append(Quantity("pendulum_frequency", "Pendulum frequency n·ω", n * omega, "rad/s"))
-    if p.max_swing is not None:
-        factor = agm(1.0, math.cos(0.5 * p.max_swing))
+    if "pendulum_frequency" in v:
+        items.append(
+            Quantity(
+                "pendulum_frequency", "Pendulum frequency n·ω", v["pendulum_frequency"], "rad/s"
+            )
+        )
+    if "pendulum_order_at_swing" in v:
         items += [
             Quantity(
                 "pendulum_order_at_swing",
                 "Order at the full swing, n·AGM(1, cos(θ/2))",
-                n * factor,
+                v["pendulum_order_at_swing"],
                 "",
                 "a large swing detunes the pendulum downwards",
             ),
             Quantity(
-                "pendulum_length_at_swing", "L tuned at the full swing", length * factor**2, "m"
+                "pendulum_length_at_swing",
+                "L tuned at the full swing",
+                v["pendulum_length_at_swing"],
+                "m",
             ),
         ]
-    if p.inertia_torque is not None and omega is not None and p.max_swing is not None:
-        mass = p.inertia_torque / (omega * omega * (r + length) * r * p.max_swing)
-        bob = (3.0 * mass / (4.0 * math.pi * p.bob_density)) ** (1.0 / 3.0)
+    if "pendulum_mass" in v:
+        mass, bob = v["pendulum_mass"], v["pendulum_bob_radius"]
         items += [
             Quantity("pendulum_mass", "Mass m = M/(ω²(R + L)·R·θ_max) (8.56)", mass, "kg"),
             Quantity("pendulum_bob_radius", "Radius of a ball of that mass", bob, "m"),
@@ -565,7 +576,7 @@ def _pendulum_section(p: Pendulum, notes: list[Note]) -> Quantities:
             Quantity(
                 "pendulum_bifilar_hole",
                 "Bifilar: hole diameter d + L",
-                p.bifilar_pin_diameter + length,
+                v["pendulum_bifilar_hole"],
                 "m",
                 f"pin {p.bifilar_pin_diameter * 1e3:.4g} mm",
             )

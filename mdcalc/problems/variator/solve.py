@@ -3,13 +3,15 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Literal
+from typing import Any, Literal
 
 import numpy as np
 
 from mdcalc.core import periodic
 from mdcalc.core.units import rpm_to_rad_s
+from mdcalc.core.xp import of
 from mdcalc.methods import Method, compare
 from mdcalc.output.report import MethodQuantity, MethodsTable, Note
 from mdcalc.problems.variator.absorber import (
@@ -19,7 +21,15 @@ from mdcalc.problems.variator.absorber import (
     seed_amplitudes,
 )
 from mdcalc.problems.variator.case import Absorber, Case, Motor
-from mdcalc.problems.variator.drive import CLUTCH, DriveScene, ThreeMass, _drive_methods
+from mdcalc.problems.variator.drive import (
+    CLUTCH,
+    CLUTCH_OF_THREE,
+    DriveScene,
+    ThreeMass,
+    _drive_methods,
+    drive_values,
+    three_mass_values,
+)
 from mdcalc.problems.variator.motor import motor_models
 from mdcalc.problems.variator.transfer import transfer_of
 
@@ -58,14 +68,14 @@ def drive_scene(case: Case, with_machine: bool) -> DriveScene:
     d = case.drive
     inertia = d.driven_inertia
     if with_machine and case.antiresonance is not None:
-        inertia += case.antiresonance.ratio**2 * case.antiresonance.machine_inertia
+        inertia = inertia + case.antiresonance.ratio**2 * case.antiresonance.machine_inertia
     psi = d.clutch_loop_area_ratio
     if psi is None and case.clutch is not None:
         psi = case.clutch.loop_area_ratio
     if d.clutch_damping is not None:
         damping = d.clutch_damping
     elif psi is not None:  # (8.44) with the two-mass model's J
-        damping = psi / (2.0 * math.pi) * math.sqrt(inertia * d.stiffness)
+        damping = psi / (2.0 * math.pi) * of(inertia, d.stiffness).sqrt(inertia * d.stiffness)
     else:
         damping = 0.0
     return DriveScene(
@@ -151,31 +161,18 @@ def _solve_drive(case: Case, result: Result) -> None:
     )
     if case.antiresonance is None:
         return
-    ar = case.antiresonance
-    # (8.44) with the J the clutch faces: J₂ alone now (J₂ + i²J₃ before); a clutch
-    # damping given as b is the same in both
-    base = drive_scene(case, with_machine=False)
-    j3 = ar.ratio**2 * ar.machine_inertia
-    if ar.coupling_stiffness is not None:
-        c2 = ar.ratio**2 * ar.coupling_stiffness
-    else:
-        c2 = base.fundamental**2 * base.inertia * j3 / (base.inertia + j3)
-    three = ThreeMass(base, j3, c2, ar.ratio**2 * ar.coupling_damping, ar.ratio)
+    base, three = _three_mass(case)
     result.three_mass = three
     system3 = three.system()
     exact3 = periodic.exact_periodic(system3)
     result.three_mass_state = exact3
     observables = [
-        ("chi_after", np.array([1.0, 0.0, 0.0, 0.0]), base.static),
-        ("coupling_factor", np.array([0.0, three.c2, 0.0, three.b2]), base.load),
+        ("chi_after", CLUTCH_OF_THREE, base.static),
+        ("coupling_factor", three.coupling(), base.load),
     ]
-    if base.damping != drive.damping:  # from ψ: show the other reading of (8.44)
-        kept = DriveScene(
-            base.omega, base.transfer, base.inertia, base.stiffness, drive.damping, base.load
-        )
-        variant = ThreeMass(kept, j3, c2, three.b2, ar.ratio)
-        state = periodic.exact_periodic(variant.system())
-        clutch = periodic.maximum_of(state, observables[0][1], state.fastest).value
+    if _damping_from_loop(case) and base.damping != drive.damping:
+        state = periodic.exact_periodic(_kept(base, drive, three).system())
+        clutch = periodic.maximum_of(state, CLUTCH_OF_THREE, state.fastest).value
         result.chi_after_kept_damping = clutch / base.static
     result.three_mass_methods = compare(
         "Methods: the three-mass model, periodic state",
@@ -186,3 +183,78 @@ def _solve_drive(case: Case, result: Result) -> None:
         ],
         _drive_methods(system3, exact3, observables, case.drive),
     )
+
+
+def _three_mass(case: Case) -> tuple[DriveScene, ThreeMass]:
+    """The two-mass model without the machine, and the three-mass design on it."""
+    assert case.antiresonance is not None
+    ar = case.antiresonance
+    # (8.44) with the J the clutch faces: J₂ alone now (J₂ + i²J₃ before); a clutch
+    # damping given as b is the same in both
+    base = drive_scene(case, with_machine=False)
+    j3 = ar.ratio**2 * ar.machine_inertia
+    if ar.coupling_stiffness is not None:
+        c2 = ar.ratio**2 * ar.coupling_stiffness
+    else:
+        c2 = base.fundamental**2 * base.inertia * j3 / (base.inertia + j3)
+    return base, ThreeMass(base, j3, c2, ar.ratio**2 * ar.coupling_damping, ar.ratio)
+
+
+def _damping_from_loop(case: Case) -> bool:
+    """b₁ comes from ψ by (8.44), and so differs with the inertia the clutch faces."""
+    assert case.drive is not None
+    if case.drive.clutch_damping is not None:
+        return False
+    return case.drive.clutch_loop_area_ratio is not None or (
+        case.clutch is not None and case.clutch.loop_area_ratio is not None
+    )
+
+
+def _kept(base: DriveScene, drive: DriveScene, three: ThreeMass) -> ThreeMass:
+    """The three-mass design had the clutch kept b₁ of the two-mass model: the other
+    reading of (8.44)."""
+    kept = DriveScene(
+        base.omega, base.transfer, base.inertia, base.stiffness, drive.damping, base.load
+    )
+    return ThreeMass(kept, three.j3, three.c2, three.b2, three.ratio)
+
+
+def drive_block(case: Case, size: int, asked: Callable[[str], bool]) -> tuple[dict[str, Any], Any]:
+    """The numbers of the two-mass model and of the three-mass design over a block
+    of ``size`` scenes (the case's numbers arrays over its rows), of the sections
+    ``asked`` for by their keys' prefix; and the rows without a periodic state,
+    asked for or not (their scene has no answer: solved alone)."""
+    drive = drive_scene(case, with_machine=True)
+    two = periodic.exact_block(drive.two_mass(), size)
+    declined = two.failure != periodic.SOLVED
+    if case.antiresonance is not None:
+        base, three = _three_mass(case)
+        state = periodic.exact_block(three.system(), size)
+        declined = declined | (state.failure != periodic.SOLVED)
+        variant = None
+        if _damping_from_loop(case):  # where b₁ differs, the other reading of (8.44)
+            variant = periodic.exact_block(_kept(base, drive, three).system(), size)
+            differs = np.broadcast_to(base.damping != drive.damping, (size,))
+            declined = declined | (differs & (variant.failure != periodic.SOLVED))
+
+    def want(*keys: str) -> bool:
+        return any(asked(key) for key in keys)
+
+    nothing = np.full(size, np.nan)  # a maximum no asked-for key needs
+    values: dict[str, Any] = {}
+    machine = case.antiresonance is not None and asked("antiresonance_")
+    if not (asked("drive_") or machine):
+        return values, declined
+    chi = ("antiresonance_chi_", "antiresonance_reduction")
+    before = two.maxima(CLUTCH)[0] if want("drive_", *chi) else nothing
+    values = drive_values(drive, before)
+    if not machine:
+        return values, declined
+    clutch = state.maxima(CLUTCH_OF_THREE)[0] if want(*chi) else nothing
+    coupling = state.maxima(three.coupling())[0] if want("antiresonance_coupling_") else nothing
+    kept = None
+    if variant is not None:
+        kept = nothing
+        if want("antiresonance_chi_after_kept", "antiresonance_reduction_kept"):
+            kept = np.where(differs, variant.maxima(CLUTCH_OF_THREE)[0] / base.static, np.nan)
+    return values | three_mass_values(three, before, clutch, coupling, kept), declined
