@@ -308,12 +308,14 @@ RATE_SCENES = [
     ("resonance", "resonance/inline_six.toml", "chain.stiffnesses.6"),
     ("resonance Mathieu", "resonance/mathieu.toml", "mathieu.damping"),
     ("variator", "variator/two_disk_absorber.toml", "absorber.inertia"),
+    ("variator pendulum", "variator/pendulum.toml", "pendulum.order"),
+    ("variator drive", "variator/vk_variator.toml", "drive.driven_inertia"),
     ("mechanism", "studies/mechanism_inertia.toml", "inertia.value"),
     ("acceleration", "acceleration/lecture.toml", "vehicle.mass"),
 ]
 
 #: Sizes of a kernel scene's two studies where 10⁶ samples would take minutes.
-KERNEL_SIZES = {"resonance Mathieu": (10_000, 100_000)}
+KERNEL_SIZES = {"resonance Mathieu": (10_000, 100_000), "variator drive": (10_000, 100_000)}
 
 
 def study_rates(folder: Path) -> None:

@@ -618,3 +618,109 @@ def test_module_constants_are_sane() -> None:
     # 16 samples per turn of the fastest mode (the resolution the variator notes refer to)
     assert periodic.SAMPLES_PER_MODE_PERIOD >= 16
     assert periodic.MAX_SAMPLES == 2**20
+
+
+# ---------------------------------------------------------------------- blocks
+
+
+def _two_coordinate_block(rng: np.random.Generator, m: int) -> list[RampSystem]:
+    """``m`` random two-coordinate drives (the variator's three-mass form), damping
+    from none to heavy, stiffness spread over four decades; the first row undamped
+    and exactly at resonance with the load's second harmonic."""
+    systems = []
+    for row in range(m):
+        j2, j3 = rng.uniform(0.01, 0.1), rng.uniform(0.5, 2.0)
+        c1, c2 = 10 ** rng.uniform(3, 7), 10 ** rng.uniform(3, 6)
+        b1, b2 = rng.choice([0.0, 1.0]) * 10 ** rng.uniform(-1, 2), 10 ** rng.uniform(-1, 1)
+        t = rng.uniform(0.005, 0.05)
+        if row == 0:  # one mode, undamped: β = 2·(2π/T)
+            j3, c2, b1, b2, c1 = 1.0, 1.0, 0.0, 0.0, j2 * (4.0 * math.pi / t) ** 2
+        mass = np.array([[j2, 0.0], [j3, j3]])
+        damping = np.array([[b1, -b2], [0.0, b2]])
+        stiffness = np.array([[c1, -c2], [0.0, c2]])
+        if row == 0:
+            mass, damping, stiffness = mass[:1, :1], damping[:1, :1], stiffness[:1, :1]
+            shape, constant = np.array([j2]), np.array([100.0])
+        else:
+            shape, constant = np.array([j2, j3]), np.array([0.0, 100.0])
+        systems.append(RampSystem(mass, damping, stiffness, constant, shape, -50.0, 4e3, t))
+    return systems
+
+
+def test_a_block_of_states_gives_every_row_its_single_numbers_bit_for_bit() -> None:
+    # exact_block on a block of rows against exact_periodic and maximum_of on each
+    # row alone (themselves a block of one): the same numbers, bit for bit, in
+    # either order of the rows; the resonant row fails in the block as it raises
+    # alone.
+    from mdcalc.core.periodic import RESONANT, SOLVED, exact_block
+
+    rng = np.random.default_rng(31)
+    systems = _two_coordinate_block(rng, 41)[1:]
+    w = np.array([1.0, 0.0, 0.0, 0.0])
+
+    def stacked(rows: list[RampSystem]) -> RampSystem:
+        return RampSystem(
+            *[np.stack([getattr(s, f) for s in rows]) for f in ("mass", "damping", "stiffness")],
+            np.stack([s.constant for s in rows]),
+            np.stack([s.shape for s in rows]),
+            np.array([s.start for s in rows]),
+            np.array([s.slope for s in rows]),
+            np.array([s.period for s in rows]),
+        )
+
+    block = exact_block(stacked(systems), len(systems))
+    values, times, _, _ = block.maxima(w)
+    backwards = exact_block(stacked(systems[::-1]), len(systems))
+    back_values, back_times, _, _ = backwards.maxima(w)
+    solved = 0
+    for i, system in enumerate(systems):
+        if block.failure[i] != SOLVED:
+            with pytest.raises(ArithmeticError):
+                exact_periodic(system)
+            assert math.isnan(values[i])
+            continue
+        alone = exact_periodic(system)
+        top = maximum_of(alone, w, alone.fastest)
+        assert (values[i], times[i]) == (top.value, top.time), i
+        assert (back_values[-1 - i], back_times[-1 - i]) == (top.value, top.time), i
+        solved += 1
+    assert solved >= 35
+    resonant = _two_coordinate_block(np.random.default_rng(1), 1)[0]
+    one = exact_block(
+        RampSystem(
+            resonant.mass[None],
+            resonant.damping[None],
+            resonant.stiffness[None],
+            resonant.constant[None],
+            resonant.shape[None],
+            np.array([resonant.start]),
+            np.array([resonant.slope]),
+            np.array([resonant.period]),
+        )
+    )
+    assert one.failure.tolist() == [RESONANT]
+    with pytest.raises(Unbounded, match="undamped resonance"):
+        exact_periodic(resonant)
+
+
+def test_the_sampled_grid_keeps_the_exact_exponentials_digits() -> None:
+    # the maxima's grid multiplies powers of e^{λh} between exact exponentials: its
+    # values agree with the state's own observe (exact exponentials) to 1e-12 of
+    # the modal part's scale
+    rng = np.random.default_rng(5)
+    for system in _two_coordinate_block(rng, 12)[1:]:
+        state = exact_periodic(system)
+        w = np.array([1.0, 0.0, 0.0, 0.0])
+        samples, _ = samples_for(system.period, state.fastest)
+        tau = np.arange(samples) * (system.period / samples)
+        exact = state.observe(w, tau)
+        weights = (w @ state.vectors) * state.coefficients
+        grid = float(w @ state.p0) + float(w @ state.p1) * tau
+        grid = (
+            grid
+            + periodic._modal_grid(
+                weights[None], state.eigenvalues[None], np.array([system.period / samples]), samples
+            )[0]
+        )
+        scale = float(np.sum(np.abs(weights)))
+        assert np.max(np.abs(grid - exact)) <= 1e-12 * scale
