@@ -49,8 +49,9 @@ Its files:
   large-swing period.
 - ``solve.py``: The solver: the parts the case has, their Methods, and the result.
 - ``report.py``: The report: a section for each part the case has.
-- ``kernel.py``: The vectorized kernel of ``mdcalc sweep`` and ``mdcalc study`` for the
-  absorber (7a): every numeric result of its sections over a block of scenes.
+- ``kernel.py``: The vectorized kernel of ``mdcalc sweep`` and ``mdcalc study``: every numeric
+  result of every section over a block of scenes, by the functions the single scene
+  runs.
 - ``charts.py``: The charts of ``--plot``: absorber amplitudes, the clutch's loading
   curve and its lines, the transfer functions, the clutch load over a stroke, the
   anti-resonance design and the pendulum (data only).
