@@ -311,11 +311,16 @@ RATE_SCENES = [
     ("variator pendulum", "variator/pendulum.toml", "pendulum.order"),
     ("variator drive", "variator/vk_variator.toml", "drive.driven_inertia"),
     ("mechanism", "studies/mechanism_inertia.toml", "inertia.value"),
+    ("mechanism tables", "mechanism/tabulated_press.toml", "motion.start_speed"),
     ("acceleration", "acceleration/lecture.toml", "vehicle.mass"),
 ]
 
 #: Sizes of a kernel scene's two studies where 10⁶ samples would take minutes.
-KERNEL_SIZES = {"resonance Mathieu": (10_000, 100_000), "variator drive": (10_000, 100_000)}
+KERNEL_SIZES = {
+    "resonance Mathieu": (10_000, 100_000),
+    "variator drive": (10_000, 100_000),
+    "mechanism tables": (1_000, 5_000),
+}
 
 
 def study_rates(folder: Path) -> None:

@@ -157,17 +157,18 @@ def dop853_block(
     atol: Any,
     stop: Callable[[Step], Any] | None = None,
     on_step: Callable[[Step], None] | None = None,
-    budget: int = 100_000,
+    budget: Any = 100_000,
     dense_counted: bool = False,
 ) -> BlockRun:
     """Integrate dy/dt = rhs from ``t0`` to ``t1`` (arrays of shape (n,)), y of
     shape (n, d), ``atol`` of shape (n, d) or broadcastable. ``stop(step)`` marks the
     rows of an accepted step that crossed the caller's terminal event (the caller may
-    locate the event on ``step.dense()``); those rows end there. ``budget`` bounds a
-    row's right-hand-side evaluations as scipy counts them: 2 at the start, 12 a step
-    tried, and with ``dense_counted`` 3 more a step taken (solve_ivp with
-    ``dense_output``, which builds the extension after every step) whether or not
-    this caller asks for the extension: a row's count never depends on other rows."""
+    locate the event on ``step.dense()``); those rows end there. ``budget`` (one
+    number, or one a row) bounds a row's right-hand-side evaluations as scipy counts
+    them: 2 at the start, 12 a step tried, and with ``dense_counted`` 3 more a step
+    taken (solve_ivp with ``dense_output``, which builds the extension after every
+    step) whether or not this caller asks for the extension: a row's count never
+    depends on other rows."""
     from mdcalc.core import budget as time_budget
 
     tableau = _tableau()
@@ -179,6 +180,7 @@ def dop853_block(
     atol = np.broadcast_to(np.asarray(atol, dtype=float), (n, d))
     everyone = np.arange(n)
     evaluations = np.full(n, 2, dtype=np.int64)
+    limit = np.broadcast_to(np.asarray(budget), (n,))  # one for all rows, or each its own
     f = rhs(everyone, t, y)
     # scipy's select_initial_step, row by row
     scale = atol + np.abs(y) * rtol
@@ -231,7 +233,7 @@ def dop853_block(
         if dense_counted:
             evaluations[rows] += np.where((error < 1.0) & np.isfinite(error), 3, 0)
         bad = tiny | ~np.isfinite(error) | ~np.isfinite(y_new).all(axis=1)
-        bad |= ~np.isfinite(f_new).all(axis=1) | (evaluations[rows] > budget)
+        bad |= ~np.isfinite(f_new).all(axis=1) | (evaluations[rows] > limit[rows])
         accept = (error < 1.0) & ~bad
         factor = np.where(error == 0.0, MAX_FACTOR, np.minimum(MAX_FACTOR, grow))
         factor = np.where(again, np.minimum(1.0, factor), factor)

@@ -139,9 +139,9 @@ def kernel_parts(run: KernelChunk, blocks: Sequence[Any], mapper: Any) -> tuple[
     this process). On the process pool two probes of :data:`PROBE` rows run here
     and time a row: a kernel whose block would take longer than HEAVY_BLOCK_SECONDS
     (a modal solution and its maxima in time, an ODE reference) has its blocks cut
-    into pieces of about PIECE_SECONDS, at least four per job, run by the pool's
-    processes and joined again per block; a lighter one runs here. On a cluster
-    every block goes to the workers, retried where one dies; a block lost for good
+    into pieces of about PIECE_SECONDS (at least PROBE rows; four per job where the
+    samples allow), run by the pool's processes and joined again per block; a
+    lighter one runs here. On a cluster every block goes to the workers, retried where one dies; a block lost for good
     comes back as a :class:`LostBlock`. The numbers are the same either way: each
     row's are its own."""
     from mdcalc.runs.cluster import PoolMapper
@@ -160,8 +160,10 @@ def kernel_parts(run: KernelChunk, blocks: Sequence[Any], mapper: Any) -> tuple[
         first = _joined([*probes, run(head[2 * PROBE :])] if len(head) > 2 * PROBE else probes)
         return itertools.chain([first], map(run, blocks[1:])), ""
     rest = [head[2 * PROBE :], *blocks[1:]]
-    size = max(64, min(BLOCK, int(PIECE_SECONDS / max(per_row, 1e-12))))
-    size = max(64, min(size, -(-(total - 2 * PROBE) // (4 * mapper.jobs))))
+    # a piece of at least PROBE rows: a kernel's cost a call (a step of an ODE over
+    # the block) is shared by its rows
+    size = min(BLOCK, max(PROBE, int(PIECE_SECONDS / max(per_row, 1e-12))))
+    size = max(PROBE, min(size, -(-(total - 2 * PROBE) // (4 * mapper.jobs))))
     pieces = [[b[i : i + size] for i in range(0, len(b), size)] for b in rest]
     answers = iter(mapper(run, [p for group in pieces for p in group], on_error=lost_block))
 

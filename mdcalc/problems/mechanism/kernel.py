@@ -1,6 +1,6 @@
-"""The vectorized kernel of ``mdcalc sweep`` and ``mdcalc study`` for a mechanism
-whose torque is a formula and whose inertia is a constant or a formula: every
-numeric result of the scene over a block of scenes.
+"""The vectorized kernel of ``mdcalc sweep`` and ``mdcalc study`` for a mechanism:
+every numeric result of the scene over a block of scenes, its torque and inertia
+formulas or tables (each row with its own parameters or table values).
 
 The reference is the single scene's: the energy equation dE/dφ = M, dt/dφ = 1/ω
 integrated by DOP853 at rtol 10⁻¹¹ with the same tolerances, start from rest and
@@ -13,8 +13,9 @@ with each row's own halving, on the same step formula.
 
 A row the single scene would run otherwise is marked ``DECLINED``, to be solved
 alone: a stiff scene (Radau), a stall, a formula that cannot be evaluated along the
-run, more than the explicit budget of evaluations. A case with a table of M or I
-runs point by point (None).
+run, more than the explicit budget of evaluations. With tables the reference runs
+from knot to knot, as the single one does: every row's knots in one sorted array,
+each row stepping through its own.
 """
 
 from __future__ import annotations
@@ -28,7 +29,13 @@ from mdcalc.input.expr import parse
 from mdcalc.input.model import kernel_answer, with_values
 from mdcalc.problems.mechanism.case import TWO_PI, VARIABLES, Case
 from mdcalc.problems.mechanism.kovylin import MAX_REFINEMENT, kovylin_step
-from mdcalc.problems.mechanism.scene import Scene, _central_slope
+from mdcalc.problems.mechanism.scene import (
+    PeriodicRows,
+    Scene,
+    _central_slope,
+    table_knots,
+    two_way_rows,
+)
 
 #: Keys ``mdcalc sweep`` and ``mdcalc study`` may vary in the vectorized form; and
 #: ``parameters.NAME`` for every parameter the case names.
@@ -40,6 +47,9 @@ SWEEP_KEYS = {
     "motion.revolutions": "revolutions",
     "motion.steps_per_revolution": "n (Kovylin's)",
     "parameters.*": "a parameter of the formulas",
+    "torque.values.N": "M at an angle of the table",
+    "torque.values.N.N": "M at an angle and speed of the two-way table",
+    "inertia.values.N": "I at an angle of the table",
 }
 
 #: The reference is an ODE run at rtol 10⁻¹¹ (DOP853, as the single scene's). The
@@ -80,24 +90,47 @@ KOVYLIN_KEYS = ("kovylin_final_speed", "kovylin_worst_error")
 
 class _Formulas:
     """M(φ, ω) and I(φ) of a block: the case's formulas over arrays, each row with
-    its own parameters; NaN where the single scene's formula would raise."""
+    its own parameters (NaN where the single scene's formula would raise), or its
+    tables, each row with its own values."""
 
-    def __init__(self, case: Case, parameters: dict[str, Any], inertia: Any) -> None:
-        self.torque = parse(case.torque.formula or "", VARIABLES, case.parameters)
+    def __init__(self, case: Case, parameters: dict[str, Any], size: int) -> None:
+        import numpy as np
+
+        t, i = case.torque, case.inertia
+        self.parameters, self.size = parameters, size
+        self.inertia_value: Any = i.value
+        self.torque = None if t.formula is None else parse(t.formula, VARIABLES, case.parameters)
+        self.torque_arrays = None if self.torque is None else self.torque.on_arrays()
         self.inertia_formula = (
-            None
-            if case.inertia.formula is None
-            else parse(case.inertia.formula, ("phi",), case.parameters).on_arrays()
+            None if i.formula is None else parse(i.formula, ("phi",), case.parameters).on_arrays()
         )
-        self.torque_arrays = self.torque.on_arrays()
-        self.parameters = parameters
-        self.inertia_value = inertia
+        self.depends = t.speeds is not None if self.torque is None else self.torque.uses("omega")
+        self.torque_table: Any = None
+        self.slope_table: Any = None
+        self.inertia_table: Any = None
+        if t.values is not None:
+            angles = t.table_angles()
+            assert angles is not None
+            if t.speeds is None:
+                table = PeriodicRows(angles, _rows(t.values, size))
+                self.torque_table = lambda rows, phi, omega: table(rows, phi)
+            else:
+                values = _rows(t.values, size)
+                self.torque_table, self.slope_table = two_way_rows(
+                    angles, list(t.speeds), values.reshape(size, len(angles), len(t.speeds))
+                )
+        if i.values is not None:
+            angles = i.table_angles()
+            assert angles is not None
+            self.inertia_table = PeriodicRows(angles, _rows(i.values, size))
+        self.everyone = np.arange(size)
 
     def scene(self, rows: Any, base: Any) -> Scene:
         """The block's scene over the rows ``rows`` (None: all of them)."""
         import numpy as np
 
         own = {k: v if rows is None else v[rows] for k, v in self.parameters.items()}
+        index = self.everyone if rows is None else rows
 
         def evaluate(run: Any, values: dict[str, Any]) -> Any:
             shape = np.broadcast_shapes(*(np.shape(v) for v in [*values.values(), *own.values()]))
@@ -105,11 +138,24 @@ class _Formulas:
             out = np.broadcast_to(run(env), shape)
             return np.where(env["_bad"], np.nan, out)
 
-        def torque(phi: Any, omega: Any) -> Any:
-            return evaluate(self.torque_arrays, {"phi": phi, "omega": omega})
+        table, slope_table = self.torque_table, self.slope_table
+        if table is None:
 
-        inertia_formula = self.inertia_formula
-        if inertia_formula is None:
+            def torque(phi: Any, omega: Any) -> Any:
+                return evaluate(self.torque_arrays, {"phi": phi, "omega": omega})
+
+        else:
+
+            def torque(phi: Any, omega: Any) -> Any:
+                return table(index, phi, omega)
+
+        inertia_formula, inertia_table = self.inertia_formula, self.inertia_table
+        if inertia_table is not None:
+
+            def inertia(phi: Any) -> Any:
+                return inertia_table(index, phi)
+
+        elif inertia_formula is None:
             value = self.inertia_value
             constant = value if rows is None or np.ndim(value) == 0 else value[rows]
 
@@ -122,38 +168,50 @@ class _Formulas:
                 i = evaluate(inertia_formula, {"phi": phi})
                 return np.where(i > 0.0, i, np.nan)
 
-        depends = self.torque.uses("omega")
-        slope = _central_slope(torque) if depends else (lambda phi, omega: 0.0)
+        if slope_table is not None:
+            slope = lambda phi, omega: slope_table(index, phi, omega)  # noqa: E731
+        else:
+            slope = _central_slope(torque) if self.depends else (lambda phi, omega: 0.0)
         return Scene(
             torque,
             slope,
             inertia,
-            depends,
+            self.depends,
             base.start_angle,
             base.start_speed,
             base.revolutions,
             base.steps,
             None,
+            base.breaks,
         )
+
+
+def _rows(values: list[Any], size: int) -> Any:
+    """A table's values (numbers, or arrays over the block where a study draws
+    them; a two-way table flattened row by row) as an (n, K) array."""
+    import numpy as np
+
+    flat = [v for row in values for v in (row if isinstance(row, list) else [row])]
+    return np.stack([np.broadcast_to(np.asarray(v, dtype=float), (size,)) for v in flat], axis=1)
 
 
 def sweep(
     case: Case, grid: dict[str, Any], wanted: Collection[str] | None = None
 ) -> dict[str, Any] | None:
     """Every numeric result of the block's scenes (numpy), as the single scene's
-    reference and Kovylin give them. None for a table of M or I, a key this form
-    does not know, or one that switches an alternative."""
+    reference and Kovylin give them. None for a key this form does not know, or one
+    that switches an alternative."""
     import numpy as np
 
-    if case.torque.formula is None or (case.inertia.value is None and case.inertia.formula is None):
-        return None
+    knots = table_knots(case)
     parameters: dict[str, Any] = {}
     others: dict[str, Any] = {}
     for key, column in grid.items():
         head, _, name = key.partition(".")
+        pattern = ".".join("N" if p.isdigit() else p for p in key.split("."))
         if head == "parameters" and name in case.parameters:
             parameters[name] = np.asarray(column, dtype=float)
-        elif key in SWEEP_KEYS and _given(case, key):
+        elif pattern in SWEEP_KEYS and _given(case, key):
             others[key] = np.asarray(column, dtype=float)
         else:
             return None
@@ -199,8 +257,9 @@ def sweep(
         spread(motion.revolutions),
         steps,
         None,
+        knots,
     )
-    formulas = _Formulas(c, parameters, c.inertia.value)
+    formulas = _Formulas(c, parameters, size)
     want = set(wanted) if wanted is not None else None
     with np.errstate(all="ignore"):
         fluctuation = want is None or bool(want & set(FLUCTUATION_KEYS))
@@ -222,8 +281,14 @@ def sweep(
 
 
 def _given(case: Case, key: str) -> bool:
-    section, name = key.split(".")
-    return getattr(getattr(case, section), name) is not None
+    """The case holds ``key``: a field it gives, or an entry of a table it has."""
+    section, name, *index = key.split(".")
+    node = getattr(getattr(case, section), name)
+    for i in index:
+        if not isinstance(node, list) or int(i) >= len(node):
+            return False
+        node = node[int(i)]
+    return node is not None and not isinstance(node, list)
 
 
 @dataclass
@@ -290,20 +355,31 @@ def _reference(formulas: _Formulas, base: Any, fluctuation: bool, nodes: bool) -
         if extremes is not None:
             extremes.see(step)
 
-    out = dop853_block(
-        rhs,
-        np.where(live, start, end),
-        y0,
-        end,
-        rtol=REFERENCE_RTOL,
-        atol=atol,
-        stop=stop,
-        on_step=on_step,
-        budget=EXPLICIT_BUDGET,
-        dense_counted=True,  # the single reference keeps its dense solution
-    )
-    declined |= ~out.done | bad
-    e_end, t_end = out.y[:, 0], out.y[:, 1]
+    # From knot to knot of the tables, as the single reference (one piece without)
+    t, y = np.where(live, start, end), y0
+    used = np.zeros(n, dtype=np.int64)
+    moving = live.copy()
+    knots, first, count = _knots(base.breaks, start, end)
+    for piece in range(int(np.max(count, initial=0)) + 1):
+        inside = piece < count
+        stage = np.where(inside, knots[np.minimum(first + piece, len(knots) - 1)], end)
+        out = dop853_block(
+            rhs,
+            np.where(moving, t, stage),
+            np.where(moving[:, None], y, np.array([1.0, 0.0])),
+            stage,
+            rtol=REFERENCE_RTOL,
+            atol=atol,
+            stop=stop,
+            on_step=on_step,
+            budget=EXPLICIT_BUDGET - used,
+            dense_counted=True,  # the single reference keeps its dense solution
+        )
+        used += out.evaluations
+        t, y = np.where(moving, out.t, t), np.where(moving[:, None], out.y, y)
+        moving &= out.done
+    declined |= ~moving | bad
+    e_end, t_end = y[:, 0], y[:, 1]
     final_speed = np.sqrt(2.0 * e_end / np.broadcast_to(scene.inertia(end), (n,)))
     values: dict[str, Any] = {
         "start_angle": phi0,
@@ -320,6 +396,22 @@ def _reference(formulas: _Formulas, base: Any, fluctuation: bool, nodes: bool) -
         values |= extremes.values(t_end)
     declined |= ~np.isfinite(final_speed) | ~np.isfinite(t_end)
     return _Run(values, declined, None if at_nodes is None else at_nodes.speeds)
+
+
+def _knots(breaks: tuple[float, ...], start: Any, end: Any) -> tuple[Any, Any, Any]:
+    """:func:`~.reference.knots_between` of every row: the knots of all rows in
+    order, and each row's first among them and its count (0 past MAX_SEGMENTS)."""
+    import numpy as np
+
+    from mdcalc.problems.mechanism.reference import MAX_SEGMENTS
+
+    if not breaks:
+        return np.zeros(1), np.zeros(np.shape(start), dtype=np.int64), np.zeros(np.shape(start))
+    turns = range(int(np.floor(np.min(start) / TWO_PI)), int(np.ceil(np.max(end) / TWO_PI)) + 1)
+    knots = np.array([turn * TWO_PI + b for turn in turns for b in breaks])
+    first = np.searchsorted(knots, start + 1e-12 * TWO_PI, side="right")
+    count = np.searchsorted(knots, end - 1e-12 * TWO_PI, side="left") - first
+    return knots, first, np.where(count > MAX_SEGMENTS, 0, count)
 
 
 def _stiffness(scene: Scene, base: Any, i0: Any, m0: Any, span: Any) -> Any:

@@ -118,11 +118,6 @@ def scene_of(case: Case) -> Scene:
         assert angles is not None and i.values is not None
         inertia = Periodic(angles, list(i.values))
     motion = case.motion
-    knots: set[float] = set()
-    for section in (t, i):
-        angles = section.table_angles()
-        if angles is not None:
-            knots.update(a % TWO_PI for a in angles)
     return Scene(
         torque,
         slope,
@@ -133,8 +128,18 @@ def scene_of(case: Case) -> Scene:
         motion.revolutions,
         motion.steps_per_revolution,
         speed_range,
-        tuple(sorted(knots)),
+        table_knots(case),
     )
+
+
+def table_knots(case: Case) -> tuple[float, ...]:
+    """The tables' knots in [0, 2π), in order: kinks of M or I."""
+    knots: set[float] = set()
+    for section in (case.torque, case.inertia):
+        angles = section.table_angles()
+        if angles is not None:
+            knots.update(a % TWO_PI for a in angles)
+    return tuple(sorted(knots))
 
 
 def _two_way(
@@ -154,5 +159,68 @@ def _two_way(
     def slope(phi: float, omega: float) -> float:
         j = cell(omega)
         return (columns[j + 1](phi) - columns[j](phi)) / (speeds[j + 1] - speeds[j])
+
+    return torque, slope
+
+
+class PeriodicRows:
+    """:class:`Periodic` over a block: the angles shared, each row its own values
+    ((n, K) array, or (n, K, S): a column per speed of a two-way table); called with
+    the rows (m,) and angles (m,) or (k, m). The same cell and the same
+    interpolation as one table's, so a row's value is its single table's, bit for
+    bit."""
+
+    def __init__(self, angles: list[float], values: Any) -> None:
+        import numpy as np
+
+        if angles[-1] - angles[0] >= TWO_PI * (1.0 - 1e-12):  # a closing point: drop it
+            angles, values = angles[:-1], values[:, :-1]
+        self.start = angles[0]
+        self.angles = np.array([*angles, angles[0] + TWO_PI])
+        self.values = np.concatenate([values, values[:, :1]], axis=1)
+
+    def locate(self, phi: Any) -> tuple[Any, Any]:
+        """The cell k of each angle and the weight w of its right end."""
+        import numpy as np
+
+        x = self.start + (phi - self.start) % TWO_PI
+        last = len(self.angles) - 2
+        k = np.clip(np.searchsorted(self.angles, x, side="right") - 1, 0, last)
+        a0, a1 = self.angles[k], self.angles[k + 1]
+        return k, (x - a0) / (a1 - a0)
+
+    def __call__(self, rows: Any, phi: Any) -> Any:
+        k, w = self.locate(phi)
+        v0, v1 = self.values[rows, k], self.values[rows, k + 1]
+        return v0 + w * (v1 - v0)
+
+
+def two_way_rows(
+    angles: list[float], speeds: list[float], values: Any
+) -> tuple[Callable[[Any, Any, Any], Any], Callable[[Any, Any, Any], Any]]:
+    """:func:`_two_way` over a block, each row its own table ((n, K, S) array): M and
+    ∂M/∂ω of the rows (m,) at φ and ω ((m,) or (k, m))."""
+    import numpy as np
+
+    table = PeriodicRows(angles, values)
+    grid = np.array(speeds)
+
+    def columns(rows: Any, phi: Any, omega: Any) -> tuple[Any, Any, Any]:
+        """The cell j of ω, and M of the columns j and j + 1 at φ."""
+        j = np.clip(np.searchsorted(grid, omega, side="right") - 1, 0, len(speeds) - 2)
+        k, w = table.locate(phi)
+        ends = []
+        for column in (j, j + 1):
+            v0, v1 = table.values[rows, k, column], table.values[rows, k + 1, column]
+            ends.append(v0 + w * (v1 - v0))
+        return j, ends[0], ends[1]
+
+    def torque(rows: Any, phi: Any, omega: Any) -> Any:
+        j, m0, m1 = columns(rows, phi, omega)
+        return m0 + (omega - grid[j]) / (grid[j + 1] - grid[j]) * (m1 - m0)
+
+    def slope(rows: Any, phi: Any, omega: Any) -> Any:
+        j, m0, m1 = columns(rows, phi, omega)
+        return (m1 - m0) / (grid[j + 1] - grid[j])
 
     return torque, slope
