@@ -46,7 +46,8 @@ class DriveScene:
     def excitation(self) -> tuple[Any, Any]:
         """u = ω²·Π″(α) = 2a₀ω²·(ωτ - Δα/2) over τ in [0, T): u₀ and du/dτ."""
         a0, w = self.transfer.a0, self.omega
-        return -a0 * w * w * self.transfer.stroke, 2.0 * a0 * w**3
+        # w·w·w, not w**3: a power of a float and of an array may round apart
+        return -a0 * w * w * self.transfer.stroke, 2.0 * a0 * (w * w * w)
 
     def two_mass(self) -> periodic.RampSystem:
         u0, u1 = self.excitation()
