@@ -234,3 +234,43 @@ def test_clutch_kernel_at_the_edges_of_its_scene(pairs, clutch):
                 assert math.isnan(got), (key, got)
             else:
                 assert got == pytest.approx(want, rel=1e-12, abs=0.0), key
+
+
+def test_variator_samples_where_a_square_rounds_apart_equal_their_single_scenes(monkeypatch):
+    # Python's x**2 of a float (libm pow) and numpy's of an array (x·x) differ by an
+    # ulp for about one input in 1500, and the stiff three-mass model (c1/c2 = 1e6)
+    # amplifies that to 1e-8. Input speeds picked where the tuned coupling's (zω)²
+    # rounds apart: the kernel's numbers are each single scene's, bit for bit.
+    import copy
+
+    from mdcalc import methods
+    from mdcalc.input.casefile import CaseText, validate
+    from mdcalc.problems.variator.solve import drive_scene
+    from mdcalc.runs.runner import solve_model
+
+    module = PROBLEMS["variator"].load()
+    path = CASES / "variator" / "antiresonance_stiff.toml"
+    data = tomllib.loads(path.read_text(encoding="utf-8"))
+    data.pop("expect", None)
+    rng = np.random.default_rng(5)
+    speeds, models = [], []
+    for rpm in rng.uniform(800.0, 1000.0, 40_000).tolist():
+        sample = copy.deepcopy(data)
+        sample["mechanism"]["input_speed_rpm"] = rpm
+        model = validate(module.Case, CaseText(path, "", sample))
+        f = drive_scene(model, with_machine=False).fundamental
+        if f**2 != float(np.square(np.array([f]))[0]):
+            speeds.append(rpm)
+            models.append(model)
+        if len(speeds) == 4:
+            break
+    assert len(speeds) == 4
+    base = validate(module.Case, CaseText(path, "", data))
+    answer = module.sweep(base, {"mechanism.input_speed_rpm": np.array(speeds)})
+    monkeypatch.setattr(methods, "MIN_TIMING_SECONDS", 2e-5)
+    monkeypatch.setattr(methods, "REFERENCE_ONLY", True)
+    for index, model in enumerate(models):
+        _, report = solve_model("variator", module, model, None)
+        for key, quantity in report.results().items():
+            if key.startswith("antiresonance_") and isinstance(quantity.value, float):
+                assert answer[key][index] == quantity.value, (key, index)

@@ -211,3 +211,26 @@ def test_a_heavy_kernel_sweep_runs_in_blocks_on_the_pool_bit_identical(monkeypat
     assert list(pooled.status) == list(here.status) and 3 in set(here.status.tolist())
     for key in here.keys:
         assert np.array_equal(here.columns[key], pooled.columns[key], equal_nan=True), key
+
+
+def test_pieces_of_a_block_join_with_a_lost_piece_failing_only_its_rows():
+    # _joined: a piece lost on the pool fails its own rows (LOST, with the reason),
+    # not the block; every piece lost gives the LostBlock; a declined piece, or
+    # pieces whose keys differ, leave the block to the point-by-point path.
+    from mdcalc.input.model import DECLINED
+    from mdcalc.runs.kernel import LOST, LOST_REASON, LostBlock, _joined
+
+    def piece(values: list[float], declined: list[bool]) -> dict:
+        return {"x": np.array(values), DECLINED: np.array(declined)}
+
+    a, b = piece([1.0, 2.0], [False, True]), piece([3.0], [False])
+    gone = LostBlock("worker died")
+    whole = _joined([a, gone, b], [2, 3, 1])
+    assert np.array_equal(whole["x"], [1.0, 2.0, np.nan, np.nan, np.nan, 3.0], equal_nan=True)
+    assert whole[DECLINED].tolist() == [False, True, False, False, False, False]
+    assert whole[LOST].tolist() == [False, False, True, True, True, False]
+    assert whole[LOST_REASON] == "worker died"
+    assert LOST not in _joined([a, b], [2, 1])
+    assert _joined([gone, gone], [2, 1]) is gone
+    assert _joined([a, None], [2, 1]) is None
+    assert _joined([a, {"y": np.array([1.0]), DECLINED: np.array([False])}], [2, 1]) is None

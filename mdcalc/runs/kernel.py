@@ -141,15 +141,17 @@ def kernel_parts(run: KernelChunk, blocks: Sequence[Any], mapper: Any) -> tuple[
     (a modal solution and its maxima in time, an ODE reference) has its blocks cut
     into pieces of about PIECE_SECONDS (at least PROBE rows; four per job where the
     samples allow), run by the pool's processes and joined again per block; a
-    lighter one runs here. On a cluster every block goes to the workers, retried where one dies; a block lost for good
-    comes back as a :class:`LostBlock`. The numbers are the same either way: each
-    row's are its own."""
+    lighter one runs here; a piece lost for good (its process died past the retries)
+    marks its rows in the block's answer (:data:`LOST`). On a cluster every block
+    goes to the workers, retried where one dies; a block lost for good comes back as
+    a :class:`LostBlock`. The numbers are the same either way: each row's are its
+    own."""
     from mdcalc.runs.cluster import PoolMapper
 
     if not isinstance(mapper, PoolMapper):
         return mapper(run, blocks, on_error=lost_block), mapper.description
     total = sum(len(block) for block in blocks)
-    if mapper.jobs <= 1 or total <= 2 * PROBE:
+    if mapper.jobs <= 1 or len(blocks[0]) <= 2 * PROBE:
         return map(run, blocks), ""
     head = blocks[0]
     probes = [run(head[:PROBE])]
@@ -157,7 +159,8 @@ def kernel_parts(run: KernelChunk, blocks: Sequence[Any], mapper: Any) -> tuple[
     probes.append(run(head[PROBE : 2 * PROBE]))
     per_row = (time.perf_counter() - clock) / len(head[PROBE : 2 * PROBE])
     if per_row * min(BLOCK, total) <= HEAVY_BLOCK_SECONDS:
-        first = _joined([*probes, run(head[2 * PROBE :])] if len(head) > 2 * PROBE else probes)
+        tail = head[2 * PROBE :]
+        first = _joined([*probes, run(tail)], [PROBE, PROBE, len(tail)])
         return itertools.chain([first], map(run, blocks[1:])), ""
     rest = [head[2 * PROBE :], *blocks[1:]]
     # a piece of at least PROBE rows: a kernel's cost a call (a step of an ODE over
@@ -170,30 +173,51 @@ def kernel_parts(run: KernelChunk, blocks: Sequence[Any], mapper: Any) -> tuple[
     def joined() -> Iterable[Any]:
         for index, group in enumerate(pieces):
             parts = [next(answers) for _ in group]
-            yield _joined([*probes, *parts] if index == 0 else parts)
+            sizes = [len(p) for p in group]
+            if index == 0:
+                parts, sizes = [*probes, *parts], [PROBE, PROBE, *sizes]
+            yield _joined(parts, sizes)
 
     return joined(), mapper.description
 
 
-def _joined(parts: list[Any]) -> Any:
-    """The answers of consecutive pieces of one block as the block's answer: None
-    if a piece was declined, the first :class:`LostBlock` if one was lost, else each
-    key's values end to end (NaN over a piece without the key)."""
+#: In a block's answer, the rows of a piece lost for good (the rest of the block
+#: computed), and the reason.
+LOST, LOST_REASON = "__lost__", "__lost_reason__"
+
+
+def _joined(parts: list[Any], sizes: list[int]) -> Any:
+    """The answers of consecutive pieces of one block (of ``sizes`` rows) as the
+    block's answer: None if a piece was declined or the pieces' keys differ, the
+    :class:`LostBlock` if every piece was lost, else each key's values end to end,
+    a lost piece's rows NaN and marked in ``LOST``."""
     import numpy as np
 
-    if len(parts) == 1 or any(p is None for p in parts):
-        return None if any(p is None for p in parts) else parts[0]
-    lost = next((p for p in parts if isinstance(p, LostBlock)), None)
-    if lost is not None:
-        return lost
-    keys = list(dict.fromkeys(k for p in parts for k in p))
-    sizes = [len(p[DECLINED]) for p in parts]
-    return {
+    if any(p is None for p in parts):
+        return None
+    done = [p for p in parts if not isinstance(p, LostBlock)]
+    if not done:
+        return parts[0]
+    if len(parts) == 1:
+        return parts[0]
+    keys = list(done[0])
+    if any(list(p) != keys for p in done):
+        return None
+    out: dict[str, Any] = {
         key: np.concatenate(
             [
-                p[key] if key in p else np.full(n, False if key == DECLINED else np.nan)
+                np.full(n, False if key == DECLINED else np.nan)
+                if isinstance(p, LostBlock)
+                else np.asarray(p[key])
                 for p, n in zip(parts, sizes, strict=True)
             ]
         )
         for key in keys
     }
+    lost = [p for p in parts if isinstance(p, LostBlock)]
+    if lost:
+        out[LOST] = np.concatenate(
+            [np.full(n, isinstance(p, LostBlock)) for p, n in zip(parts, sizes, strict=True)]
+        )
+        out[LOST_REASON] = lost[0].reason
+    return out

@@ -396,7 +396,7 @@ def _kernel_in_blocks(
     where the kernel declines the grid (point by point then)."""
     import numpy as np
 
-    from mdcalc.runs.kernel import KernelChunk, LostBlock, kernel_parts
+    from mdcalc.runs.kernel import LOST, LOST_REASON, KernelChunk, LostBlock, kernel_parts
 
     data = copy.deepcopy(sweep.case.data)
     data.pop("expect", None)
@@ -419,6 +419,11 @@ def _kernel_in_blocks(
             for key in wanted:
                 columns[key][start:end] = part[key]
             declined[start:end] = part[DECLINED]
+            if LOST in part:  # a piece of the block lost on the pool: its points failed
+                where = start + np.flatnonzero(part[LOST])
+                status[where] = EXIT_BUG
+                at = f"points {where[0]} to {where[-1]} (in part)"
+                messages.append(f"{sweep.case.path}: error: {at}: {part[LOST_REASON]}")
         start = end
     return columns | {DECLINED: declined}
 

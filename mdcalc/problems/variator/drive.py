@@ -46,7 +46,7 @@ class DriveScene:
     def excitation(self) -> tuple[Any, Any]:
         """u = ω²·Π″(α) = 2a₀ω²·(ωτ - Δα/2) over τ in [0, T): u₀ and du/dτ."""
         a0, w = self.transfer.a0, self.omega
-        # w·w·w, not w**3: a power of a float and of an array may round apart
+        # w·w·w, not w**3: a power of a float (libm pow) and of an array may round apart
         return -a0 * w * w * self.transfer.stroke, 2.0 * a0 * (w * w * w)
 
     def two_mass(self) -> periodic.RampSystem:
@@ -148,7 +148,7 @@ def three_mass_values(
     chi_before, chi_after = before / d.static, clutch / d.static
     values = {
         "antiresonance_machine": three.j3,
-        "antiresonance_coupling": three.c2 / i**2,
+        "antiresonance_coupling": three.c2 / (i * i),
         "antiresonance_frequency": three.antiresonance,
         "antiresonance_natural_low": low,
         "antiresonance_natural_high": high,

@@ -68,7 +68,8 @@ def drive_scene(case: Case, with_machine: bool) -> DriveScene:
     d = case.drive
     inertia = d.driven_inertia
     if with_machine and case.antiresonance is not None:
-        inertia = inertia + case.antiresonance.ratio**2 * case.antiresonance.machine_inertia
+        i = case.antiresonance.ratio
+        inertia = inertia + i * i * case.antiresonance.machine_inertia
     psi = d.clutch_loop_area_ratio
     if psi is None and case.clutch is not None:
         psi = case.clutch.loop_area_ratio
@@ -192,12 +193,15 @@ def _three_mass(case: Case) -> tuple[DriveScene, ThreeMass]:
     # (8.44) with the J the clutch faces: J₂ alone now (J₂ + i²J₃ before); a clutch
     # damping given as b is the same in both
     base = drive_scene(case, with_machine=False)
-    j3 = ar.ratio**2 * ar.machine_inertia
+    # x·x, not x**2: Python's power of a float (libm pow) and numpy's of an array
+    # (a product) may round apart by an ulp, which the stiff three-mass model amplifies
+    square = ar.ratio * ar.ratio
+    j3 = square * ar.machine_inertia
     if ar.coupling_stiffness is not None:
-        c2 = ar.ratio**2 * ar.coupling_stiffness
+        c2 = square * ar.coupling_stiffness
     else:
-        c2 = base.fundamental**2 * base.inertia * j3 / (base.inertia + j3)
-    return base, ThreeMass(base, j3, c2, ar.ratio**2 * ar.coupling_damping, ar.ratio)
+        c2 = base.fundamental * base.fundamental * base.inertia * j3 / (base.inertia + j3)
+    return base, ThreeMass(base, j3, c2, square * ar.coupling_damping, ar.ratio)
 
 
 def _damping_from_loop(case: Case) -> bool:

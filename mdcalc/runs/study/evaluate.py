@@ -24,7 +24,14 @@ from mdcalc.errors import EXIT_BUG, EXIT_INPUT, EXIT_NO_ANSWER, EXIT_OK, InputEr
 from mdcalc.input.casefile import CaseText, validate
 from mdcalc.input.model import DECLINED
 from mdcalc.runs.cluster import Mapper
-from mdcalc.runs.kernel import BLOCK, KernelChunk, LostBlock, kernel_parts
+from mdcalc.runs.kernel import (
+    BLOCK,
+    LOST,
+    LOST_REASON,
+    KernelChunk,
+    LostBlock,
+    kernel_parts,
+)
 from mdcalc.runs.study.spec import Plan
 
 #: Samples per kernel call.
@@ -177,6 +184,14 @@ def _by_kernel(
         for key in wanted:
             values[key][start : start + len(block)] = part[key]
         declined[start : start + len(block)] = part[DECLINED]
+        if LOST in part:  # a piece of the block lost on the pool: its rows failed
+            where = np.flatnonzero(part[LOST])
+            lost[start + where] = True
+            if len(lost_reasons) < KEPT_REASONS:
+                lost_reasons.append(
+                    f"samples {start + where[0]} to {start + where[-1]} (in part): "
+                    f"{part[LOST_REASON]}"
+                )
         start += len(block)
         if on_done is not None:
             on_done(len(block) - int(part[DECLINED].sum()))
