@@ -286,24 +286,11 @@ def _mode_shapes(
         best = np.full(lam.shape, np.inf)
         where = np.full(lam.shape, -1)
         chosen_scale = np.ones(lam.shape)
-        # A join's shape is the left table up to it and the scaled right one past it:
-        # the masses before the join have the left table's residuals, those two past
-        # it the right table's (times the scale), and only the two at the join their own.
-        left_worst, left_size = _prefix(*_residuals(j, c, lam, left))
-        right_worst, right_size = _suffix(*_residuals(j, c, lam, right))
         for join in range(n):
             usable = (right[join] != 0.0) & np.isfinite(left[join])
             scale = left[join] / right[join]
-            shape = left[: join + 1] + [scale * v for v in right[join + 1 : join + 3]]
-            worst, size = left_worst[join], left_size[join]
-            for k in (join, join + 1):
-                if k < n:
-                    w_k, s_k = _residual(j, c, lam, shape, k, n)
-                    worst, size = np.maximum(worst, w_k), np.maximum(size, s_k)
-            if join + 2 < n:
-                worst = np.maximum(worst, np.abs(scale) * right_worst[join + 2])
-                size = np.maximum(size, np.abs(scale) * right_size[join + 2])
-            misfit = np.where((size > 0.0) & np.isfinite(size), worst / size, np.inf)
+            shape = left[: join + 1] + [scale * v for v in right[join + 1 :]]
+            misfit = _misfit(j, c, lam, shape)
             rank = np.where(usable, np.minimum(misfit, np.finfo(float).max), np.inf)
             better = rank < best
             best = np.where(better, rank, best)
@@ -333,50 +320,27 @@ def _mode_shapes(
         return theta / norm[:, None, :], springs / norm[:, None, :]
 
 
-def _residual(
-    j: np.ndarray, c: np.ndarray, lam: np.ndarray, theta: list[np.ndarray], k: int, n: int
-) -> tuple[np.ndarray, np.ndarray]:
-    """|(K - λJ)·θ| at mass k, and the largest term that enters it, scaled alike (θ
-    holds the masses 0 … k + 1 at least)."""
-    terms = [-lam * j[:, k, None] * theta[k]]
-    if k > 0:
-        terms.append(c[:, k - 1, None] * (theta[k] - theta[k - 1]))
-    if k + 1 < n:
-        terms.append(c[:, k, None] * (theta[k] - theta[k + 1]))
-    total = terms[0]
-    for term in terms[1:]:
-        total = total + term
-    size = np.abs(terms[0])
-    for term in terms[1:]:
-        size = np.maximum(size, np.abs(term))
-    return np.abs(total), size
-
-
-def _residuals(
-    j: np.ndarray, c: np.ndarray, lam: np.ndarray, theta: list[np.ndarray]
-) -> tuple[list[np.ndarray], list[np.ndarray]]:
-    """:func:`_residual` of every mass of a whole shape."""
+def _misfit(j: np.ndarray, c: np.ndarray, lam: np.ndarray, theta: list[np.ndarray]) -> np.ndarray:
+    """max |(K - λJ)·θ| over the masses, scaled by the largest term that enters it."""
     n = len(theta)
-    pairs = [_residual(j, c, lam, theta, k, n) for k in range(n)]
-    return [w for w, _ in pairs], [s for _, s in pairs]
+    worst = np.zeros(lam.shape)
+    size = np.zeros(lam.shape)
+    for k in range(n):
+        terms = [-lam * j[:, k, None] * theta[k]]
+        if k > 0:
+            terms.append(c[:, k - 1, None] * (theta[k] - theta[k - 1]))
+        if k + 1 < n:
+            terms.append(c[:, k, None] * (theta[k] - theta[k + 1]))
+        total = terms[0]
+        for term in terms[1:]:
+            total = total + term
+        worst = np.maximum(worst, np.abs(total))
+        for term in terms:
+            size = np.maximum(size, np.abs(term))
+    return np.where((size > 0.0) & np.isfinite(size), worst / size, np.inf)
 
 
-def _prefix(worst: list[np.ndarray], size: list[np.ndarray]) -> tuple[list[Any], list[Any]]:
-    """The largest over the masses before each index (0 before the first)."""
-    out_w, out_s = [np.zeros_like(worst[0])], [np.zeros_like(size[0])]
-    for w, s in zip(worst[:-1], size[:-1], strict=True):
-        out_w.append(np.maximum(out_w[-1], w))
-        out_s.append(np.maximum(out_s[-1], s))
-    return out_w, out_s
-
-
-def _suffix(worst: list[np.ndarray], size: list[np.ndarray]) -> tuple[list[Any], list[Any]]:
-    """The largest over the masses from each index on."""
-    out_w, out_s = [worst[-1]], [size[-1]]
-    for w, s in zip(worst[-2::-1], size[-2::-1], strict=True):
-        out_w.append(np.maximum(out_w[-1], w))
-        out_s.append(np.maximum(out_s[-1], s))
-    return out_w[::-1], out_s[::-1]
+# ---------------------------------------------------- suddenly applied torques
 
 
 @dataclass(frozen=True)
@@ -566,7 +530,8 @@ def block_harmonic_response(
     angles (B, n), the spring moments (B, n-1), and where the matrix is singular to
     working precision (B,) — those rows' numbers mean nothing.
 
-    The conditioning (in the 1-norm, from the inverse) is judged after a symmetric
+    The conditioning (in the 1-norm, from the inverse: the matrix is complex
+    symmetric, so it bounds the 2-norm's from above) is judged after a symmetric
     diagonal scaling S⁻¹·A·S⁻¹: a chain whose stiffnesses span 10¹⁶ is not singular,
     only badly scaled."""
     size, n = inertias.shape
