@@ -110,8 +110,15 @@ def test_a_block_of_tables_gives_every_row_its_single_tables_numbers_bit_for_bit
             values[:, -1] = values[:, 0]
         phi = rng.uniform(-20.0, 40.0, (4, rows))
         omega = rng.uniform(-50.0, 300.0, (4, rows))
-        block = PeriodicRows(angles, values[:, :, 0])
-        torque, slope = two_way_rows(angles, speeds, values)
+        # every entry drawn (an array over the rows) but the second angle's, shared
+        one_way: list = [values[:, k, 0] for k in range(len(angles))]
+        one_way[1] = float(values[0, 1, 0])
+        values[:, 1, 0] = values[0, 1, 0]
+        two: list = [[values[:, k, j] for j in range(len(speeds))] for k in range(len(angles))]
+        two[1][1] = float(values[0, 1, 1])
+        values[:, 1, 1] = values[0, 1, 1]
+        block = PeriodicRows(angles, one_way)
+        torque, slope = two_way_rows(angles, speeds, two)
         index = np.arange(rows)
         got = block(index, phi)
         got_torque, got_slope = torque(index, phi, omega), slope(index, phi, omega)

@@ -112,17 +112,18 @@ class _Formulas:
             angles = t.table_angles()
             assert angles is not None
             if t.speeds is None:
-                table = PeriodicRows(angles, _rows(t.values, size))
+                table = PeriodicRows(angles, list(t.values))
                 self.torque_table = lambda rows, phi, omega: table(rows, phi)
             else:
-                values = _rows(t.values, size)
                 self.torque_table, self.slope_table = two_way_rows(
-                    angles, list(t.speeds), values.reshape(size, len(angles), len(t.speeds))
+                    angles,
+                    list(t.speeds),
+                    [list(row) for row in t.values],  # type: ignore[arg-type]
                 )
         if i.values is not None:
             angles = i.table_angles()
             assert angles is not None
-            self.inertia_table = PeriodicRows(angles, _rows(i.values, size))
+            self.inertia_table = PeriodicRows(angles, list(i.values))
         self.everyone = np.arange(size)
 
     def scene(self, rows: Any, base: Any) -> Scene:
@@ -184,15 +185,6 @@ class _Formulas:
             None,
             base.breaks,
         )
-
-
-def _rows(values: list[Any], size: int) -> Any:
-    """A table's values (numbers, or arrays over the block where a study draws
-    them; a two-way table flattened row by row) as an (n, K) array."""
-    import numpy as np
-
-    flat = [v for row in values for v in (row if isinstance(row, list) else [row])]
-    return np.stack([np.broadcast_to(np.asarray(v, dtype=float), (size,)) for v in flat], axis=1)
 
 
 def sweep(

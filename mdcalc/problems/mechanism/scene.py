@@ -164,20 +164,31 @@ def _two_way(
 
 
 class PeriodicRows:
-    """:class:`Periodic` over a block: the angles shared, each row its own values
-    ((n, K) array, or (n, K, S): a column per speed of a two-way table); called with
-    the rows (m,) and angles (m,) or (k, m). The same cell and the same
-    interpolation as one table's, so a row's value is its single table's, bit for
-    bit."""
+    """:class:`Periodic` over a block: the angles shared, the values the case's (one
+    per angle, or a list per angle: a two-way table's speeds), an entry a study
+    draws an array over the block's rows; called with the rows (m,) and angles (m,)
+    or (k, m). The table is kept once and the drawn entries beside it, so a block
+    costs the table plus its drawn columns. The same cell and the same interpolation
+    as one table's: a row's value is its single table's, bit for bit."""
 
-    def __init__(self, angles: list[float], values: Any) -> None:
+    def __init__(self, angles: list[float], values: list[Any]) -> None:
         import numpy as np
 
         if angles[-1] - angles[0] >= TWO_PI * (1.0 - 1e-12):  # a closing point: drop it
-            angles, values = angles[:-1], values[:, :-1]
+            angles, values = angles[:-1], values[:-1]
+        values = [*values, values[0]]  # the wrap to the first angle, a turn on
         self.start = angles[0]
         self.angles = np.array([*angles, angles[0] + TWO_PI])
-        self.values = np.concatenate([values, values[:, :1]], axis=1)
+        self.drawn: dict[tuple[int, ...], Any] = {}
+        entries = [row if isinstance(row, list) else [row] for row in values]
+        base = np.zeros((len(entries), len(entries[0])))
+        for k, row in enumerate(entries):
+            for s, value in enumerate(row):
+                if np.ndim(value):
+                    self.drawn[(k, s)] = np.asarray(value, dtype=float)
+                else:
+                    base[k, s] = value
+        self.base = base if isinstance(values[0], list) else base[:, 0]
 
     def locate(self, phi: Any) -> tuple[Any, Any]:
         """The cell k of each angle and the weight w of its right end."""
@@ -189,17 +200,29 @@ class PeriodicRows:
         a0, a1 = self.angles[k], self.angles[k + 1]
         return k, (x - a0) / (a1 - a0)
 
+    def value(self, rows: Any, k: Any, column: Any = None) -> Any:
+        """The table's entry at angle k (and speed ``column``) of each row."""
+        import numpy as np
+
+        out = self.base[k] if column is None else self.base[k, column]
+        for (at, speed), drawn in self.drawn.items():
+            hit = k == at if column is None else (k == at) & (column == speed)
+            if np.any(hit):
+                out = np.where(hit, drawn[rows], out)
+        return out
+
     def __call__(self, rows: Any, phi: Any) -> Any:
         k, w = self.locate(phi)
-        v0, v1 = self.values[rows, k], self.values[rows, k + 1]
+        v0, v1 = self.value(rows, k), self.value(rows, k + 1)
         return v0 + w * (v1 - v0)
 
 
 def two_way_rows(
-    angles: list[float], speeds: list[float], values: Any
+    angles: list[float], speeds: list[float], values: list[list[Any]]
 ) -> tuple[Callable[[Any, Any, Any], Any], Callable[[Any, Any, Any], Any]]:
-    """:func:`_two_way` over a block, each row its own table ((n, K, S) array): M and
-    ∂M/∂ω of the rows (m,) at φ and ω ((m,) or (k, m))."""
+    """:func:`_two_way` over a block (the values a list of rows, one per angle, an
+    entry a study draws an array over the block): M and ∂M/∂ω of the rows (m,) at φ
+    and ω ((m,) or (k, m))."""
     import numpy as np
 
     table = PeriodicRows(angles, values)
@@ -211,7 +234,7 @@ def two_way_rows(
         k, w = table.locate(phi)
         ends = []
         for column in (j, j + 1):
-            v0, v1 = table.values[rows, k, column], table.values[rows, k + 1, column]
+            v0, v1 = table.value(rows, k, column), table.value(rows, k + 1, column)
             ends.append(v0 + w * (v1 - v0))
         return j, ends[0], ends[1]
 
