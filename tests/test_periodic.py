@@ -724,3 +724,34 @@ def test_the_sampled_grid_keeps_the_exact_exponentials_digits() -> None:
         )
         scale = float(np.sum(np.abs(weights)))
         assert np.max(np.abs(grid - exact)) <= 1e-12 * scale
+
+
+def test_a_row_that_is_not_finite_fails_alone_and_leaves_the_block_solved() -> None:
+    # a NaN stiffness or an infinite load in one row: that row has no state, the
+    # others keep their numbers (the batched solves do not raise for the block)
+    from mdcalc.core.periodic import SOLVED, exact_block
+
+    systems = _two_coordinate_block(np.random.default_rng(8), 5)[1:]
+    stiffness = np.stack([s.stiffness for s in systems])
+    stiffness[1, 0, 0] = np.nan
+    slope = np.array([s.slope for s in systems])
+    slope[2] = np.inf
+    block = exact_block(
+        RampSystem(
+            np.stack([s.mass for s in systems]),
+            np.stack([s.damping for s in systems]),
+            stiffness,
+            np.stack([s.constant for s in systems]),
+            np.stack([s.shape for s in systems]),
+            np.array([s.start for s in systems]),
+            slope,
+            np.array([s.period for s in systems]),
+        ),
+        len(systems),
+    )
+    values, _, _, _ = block.maxima(np.array([1.0, 0.0, 0.0, 0.0]))
+    assert [f == SOLVED for f in block.failure] == [True, False, False, True]
+    assert np.isnan(values[1]) and np.isnan(values[2])
+    for i in (0, 3):
+        alone = exact_periodic(systems[i])
+        assert values[i] == maximum_of(alone, np.array([1.0, 0, 0, 0]), alone.fastest).value

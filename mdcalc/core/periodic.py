@@ -266,16 +266,37 @@ def exact_block(system: RampSystem, size: int = 1) -> PeriodicBlock:
 
     k, c = rows(system.stiffness, (n, n)), rows(system.damping, (n, n))
     shape, t = rows(system.shape, (n,)), rows(system.period, ())
-    b = np.linalg.solve(k, (shape * rows(system.slope, ())[:, None])[..., None])[..., 0]
-    force = rows(system.constant, (n,)) + shape * rows(system.start, ())[:, None]
+    mass, constant = rows(system.mass, (n, n)), rows(system.constant, (n,))
+    start, slope = rows(system.start, ()), rows(system.slope, ())
+    # a row with a number that is not finite has no state; it must not sink the
+    # block's batched solves (a harmless system stands in for it)
+    broken = ~(
+        np.all(np.isfinite(k), axis=(1, 2))
+        & np.all(np.isfinite(c), axis=(1, 2))
+        & np.all(np.isfinite(mass), axis=(1, 2))
+        & np.all(np.isfinite(shape), axis=1)
+        & np.all(np.isfinite(constant), axis=1)
+        & np.isfinite(t)
+        & (t > 0.0)
+        & np.isfinite(start)
+        & np.isfinite(slope)
+    )
+    if broken.any():
+        eye, zero = np.eye(n), np.zeros(n)
+        k, c, mass = (np.where(broken[:, None, None], eye, x) for x in (k, c, mass))
+        shape, constant = (np.where(broken[:, None], zero, x) for x in (shape, constant))
+        t = np.where(broken, 1.0, t)
+        start, slope = np.where(broken, 0.0, start), np.where(broken, 0.0, slope)
+    b = np.linalg.solve(k, (shape * slope[:, None])[..., None])[..., 0]
+    force = constant + shape * start[:, None]
     a = np.linalg.solve(k, (force - (c @ b[..., None])[..., 0])[..., None])[..., 0]
     p0 = np.concatenate([a, b], axis=-1)
     p1 = np.concatenate([b, np.zeros((m, n))], axis=-1)
-    first = replace(system, mass=rows(system.mass, (n, n)), damping=c, stiffness=k).first_order()
+    first = replace(system, mass=mass, damping=c, stiffness=k).first_order()
     eigenvalues, vectors = np.linalg.eig(first)
     # complex throughout: an overdamped block's are all real, and numpy says so
     eigenvalues, vectors = eigenvalues.astype(complex), vectors.astype(complex)
-    failure = np.full(m, SOLVED)
+    failure = np.where(broken, UNSEPARATED, SOLVED)
     with np.errstate(all="ignore"):
         failure[~(np.linalg.cond(vectors) <= 1e12)] = UNSEPARATED
     # The particular solution holds K⁻¹: a mode much slower than the load (|λ|T ≪ 1)
@@ -421,6 +442,7 @@ def _samples(period: np.ndarray, fastest: np.ndarray) -> tuple[np.ndarray, np.nd
     """:func:`samples_for` of every row: the least power of two from 256 to 2²⁰ at or
     above the wanted count."""
     wanted = SAMPLES_PER_MODE_PERIOD * fastest * period / (2.0 * math.pi)
+    wanted = np.where(np.isfinite(wanted), wanted, 0.0)  # (a row without a state)
     with np.errstate(all="ignore"):
         power = np.ceil(np.log2(np.clip(wanted, 256.0, float(MAX_SAMPLES))))
     samples = np.exp2(power)
