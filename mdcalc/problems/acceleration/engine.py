@@ -8,6 +8,8 @@ import math
 from dataclasses import dataclass
 from typing import Any
 
+from mdcalc.core.xp import of
+
 
 @dataclass(frozen=True)
 class EngineCurve:
@@ -76,11 +78,12 @@ class EngineCurve:
             return omega, self.torque(omega)
         a, b, c = self.coefficients
         x = b / (2.0 * c) if c > 0 else limit / self.rated_speed
-        omega = min(max(x * self.rated_speed, self.low), limit)
+        xp = of(x, self.rated_speed, limit)  # (ω_E and the limit arrays in a block)
+        omega = xp.minimum(xp.maximum(x * self.rated_speed, self.low), limit)
         return omega, self.torque(omega)
 
     def max_power_speed(self, limit: float) -> float:
         """ω of the maximum power M·ω on [low, limit]: n_E of Leiderman's curve."""
         if not self.is_table:
-            return min(self.rated_speed, limit)
+            return of(self.rated_speed, limit).minimum(self.rated_speed, limit)
         return max(self._candidates(limit), key=lambda w: w * self.torque(w))

@@ -32,8 +32,9 @@ from mdcalc.problems.acceleration.runs import phase_time_estimate
 from mdcalc.problems.acceleration.scene import Scene, scene_of
 
 #: Keys ``mdcalc sweep`` and ``mdcalc study`` may vary in the vectorized form (N: any
-#: list index). The engine's speeds (launch, shift, rev limit, the table) stay the
-#: case's; ``engine.max_power`` scales Leiderman's curve.
+#: list index). ``engine.max_power`` and ``engine.max_power_speed_rpm`` shape
+#: Leiderman's curve; the launch, shift and rev-limit speeds, given or by default,
+#: are each row's own. A torque table stays the case's (with it, the rev limit too).
 SWEEP_KEYS = {
     "gravity": "g",
     "vehicle.mass": "m",
@@ -57,7 +58,12 @@ SWEEP_KEYS = {
     "target.speed_kmh": "v_target",
     "target.measured_time": "measured time",
     "engine.max_power": "N_E",
+    "engine.max_power_speed_rpm": "n_E",
     "engine.max_torque": "M_E (checked)",
+    "engine.max_torque_speed_rpm": "n_M (the launch speed by default)",
+    "engine.max_speed_rpm": "rev limit",
+    "transmission.shift_speed_rpm": "shift speed",
+    "transmission.launch_speed_rpm": "launch speed",
     "lecture.traction_coefficient": "A/m",
     "lecture.shift_angular_speed": "ω_D",
 }
@@ -88,8 +94,9 @@ def sweep(
         pattern = ".".join("N" if p.isdigit() else p for p in parts)
         if pattern not in SWEEP_KEYS or not _given(case, parts):
             return None
-    if "engine.max_power" in grid and case.engine.torque_curve is not None:
-        return None
+    table = case.engine.torque_curve is not None
+    if table and ("engine.max_power" in grid or "engine.max_speed_rpm" in grid):
+        return None  # a table's peak over a limit drawn row by row: point by point
     size = max([np.size(v) for v in grid.values()] + [1])
     c = with_values(case, {key: np.asarray(v, dtype=float) for key, v in grid.items()})
     scene = scene_of(c)
@@ -178,8 +185,10 @@ def take(scene: Scene, rows: Any) -> Scene:
             return value[rows]
         if isinstance(value, tuple):
             return tuple(part(v) for v in value)
-        if isinstance(value, EngineCurve) and isinstance(value.rated_torque, np.ndarray):
-            return dataclasses.replace(value, rated_torque=part(value.rated_torque))
+        if isinstance(value, EngineCurve):  # M_N and ω_E arrays where a study draws them
+            return dataclasses.replace(
+                value, rated_torque=part(value.rated_torque), rated_speed=part(value.rated_speed)
+            )
         return value
 
     return dataclasses.replace(
