@@ -197,9 +197,14 @@ class PeriodicBlock:
             modal = np.exp(tau[..., None] * lam[rows][:, None, :]) * weights[rows][:, None, :]
             return level[rows][:, None] + drift[rows][:, None] * tau + modal.sum(axis=-1).real
 
+        kept: list[Any] = [None, None]  # the last rows asked and their numbers
+
         def rate(rows: np.ndarray, tau: np.ndarray) -> np.ndarray:
-            modal = np.exp(tau[..., None] * lam[rows][:, None, :]) * slopes[rows][:, None, :]
-            return drift[rows][:, None] + modal.sum(axis=-1).real
+            if kept[0] is not rows:  # the bisection asks about the same rows 40 times
+                kept[:] = [rows, (lam[rows][:, None, :], slopes[rows][:, None, :], drift[rows])]
+            lam_rows, slope_rows, drift_rows = kept[1]
+            modal = np.exp(tau[..., None] * lam_rows) * slope_rows
+            return drift_rows[:, None] + modal.sum(axis=-1).real
 
         samples, resolved = _samples(self.period, self.fastest if fastest is None else fastest)
         values, times = np.full(m, math.nan), np.full(m, math.nan)
@@ -232,9 +237,21 @@ def _modal_grid(weights: np.ndarray, lam: np.ndarray, h: np.ndarray, count: int)
     powers[:, 1:] = step[:, None, :]
     powers = np.cumprod(powers, axis=1)
     anchors = np.exp((np.arange(0, count, run) * h[:, None])[..., None] * lam[:, None, :])
+    # A conjugate pair of modes (eig gives them side by side) sums to twice the real
+    # part of the first: its partner is not evaluated (to the round-off of the
+    # partner's weight, which is the first's conjugate up to it)
+    weights = weights.copy()
+    taken = np.zeros(k, dtype=bool)
+    skipped = np.zeros(width, dtype=bool)
+    for i in range(width - 1):
+        pair = ~taken & (lam[:, i + 1] == np.conj(lam[:, i])) & (lam[:, i].imag != 0.0)
+        weights[:, i] = np.where(pair, 2.0 * weights[:, i], weights[:, i])
+        weights[:, i + 1] = np.where(pair, 0.0, weights[:, i + 1])
+        taken = pair
+        skipped[i + 1] = bool(np.all(pair))
     anchors *= weights[:, None, :]
     total = np.zeros((k, count // run, run))
-    for i in range(width):  # mode by mode: Re(a·p) = a'·p' - a''·p''
+    for i in np.flatnonzero(~skipped).tolist():  # mode by mode: Re(a·p) = a'·p' - a''·p''
         total += anchors[:, :, None, i].real * powers[:, None, :, i].real
         total -= anchors[:, :, None, i].imag * powers[:, None, :, i].imag
     return total.reshape(k, count)
@@ -515,11 +532,14 @@ def periodic_maxima(
     h, p = (period / samples)[owner], period[owner]
     low, high = tau[owner, where] - h, tau[owner, where] + h
 
-    def rising(at: np.ndarray) -> np.ndarray:
-        return rate(rows[owner], (at % p)[:, None])[:, 0] > 0.0
+    who = rows[owner]  # one array for the calls that follow (a sampler may keep its rows)
 
-    inside = rising(low) & (rate(rows[owner], (high % p)[:, None])[:, 0] < 0.0)
+    def rising(at: np.ndarray) -> np.ndarray:
+        return rate(who, (at % p)[:, None])[:, 0] > 0.0
+
+    inside = rising(low) & (rate(who, (high % p)[:, None])[:, 0] < 0.0)
     owner, low, high, p = owner[inside], low[inside], high[inside], p[inside]
+    who = rows[owner]
     if len(owner) == 0:
         return best_value, best_time
     for _ in range(40):  # the bracket shrinks to 2⁻⁴⁰ of a sample step
@@ -527,7 +547,7 @@ def periodic_maxima(
         up = rising(middle)
         low, high = np.where(up, middle, low), np.where(up, high, middle)
     middle = (0.5 * (low + high)) % p
-    refined = observe(rows[owner], middle[:, None])[:, 0]
+    refined = observe(who, middle[:, None])[:, 0]
     order = np.lexsort((-refined, owner))  # each row's best refined peak first
     first = order[np.r_[True, owner[order][1:] != owner[order][:-1]]]
     better = refined[first] > best_value[owner[first]]
