@@ -2,7 +2,7 @@
 moments of a chain's springs after suddenly applied torques (:mod:`.chain`).
 
 * :func:`cosine_sum_maximum` -- one sum, found by sampling at 16 points per period
-  of the fastest resolved mode and golden-section refinement of every candidate.
+  of the fastest resolved mode and Newton refinement of every candidate on its slope.
 * :func:`maxima` -- the same for a block of rows at once (a study's samples), S sums
   per row sharing its frequencies and window; a single scene is a block of one.
 """
@@ -52,12 +52,11 @@ SAMPLE_BUDGET = 1 << 22
 _TILE = 1 << 18
 #: Samples of the grid between two exact angles (see ``grid_values``).
 RUN = 32
-_GOLDEN = (math.sqrt(5.0) - 1.0) / 2.0
-#: Golden-section steps of a candidate: its bracket (two sample steps) shrinks to
-#: 0.618⁴⁸ ≈ 10⁻¹⁰ of itself. A maximum's value is flat to second order, so its value
-#: is exact to rounding long before; its time is set to about √ε of the step by the
-#: rounding of the sums themselves, which more steps cannot improve.
-GOLDEN_STEPS = 48
+#: Newton steps on a candidate's slope: from the middle of its bracket (two sample
+#: steps, an eighth of the fastest period) Newton converges quadratically, and a
+#: step it cannot take halves the bracket instead. Its time is then set by the
+#: rounding of the slope, about ε of the period; the value is flat to second order.
+NEWTON_STEPS = 10
 
 
 def cosine_sum_maximum(
@@ -94,8 +93,8 @@ def maxima(
 
     Sampled at 16 points per period of the fastest mode that fits the budget (and
     that some sum of the row has); every sampled local maximum within the sampling
-    error of the best is refined by golden section on its two neighbouring
-    intervals. Modes faster than the budget allows are added at their amplitude |Bⱼ|
+    error of the best is refined by Newton on its slope between its two neighbouring
+    samples. Modes faster than the budget allows are added at their amplitude |Bⱼ|
     (they swing through it within each of their periods), and the result says it is
     a bound with its error ½·Σ|B·β²|·(π/β_fast)². A row's result does not depend on
     the other rows.
@@ -166,30 +165,34 @@ def maxima(
     t0, dt, t1 = start[at], step[at], end[at]
     low = np.clip(t0 + dt * (picked - 1), t0, t1)
     high = np.clip(t0 + dt * (picked + 1), t0, t1)
-    # Golden section, all candidates of all rows at once, one new point a step.
-    cc, bc, wc = constant[at, which], b_slow[at, which], w[at]
-
-    def candidate_values(t: np.ndarray) -> np.ndarray:
-        return _sums(cc, bc, wc, t)
-
-    a = high - _GOLDEN * (high - low)
-    c = low + _GOLDEN * (high - low)
-    f_a, f_c = candidate_values(a), candidate_values(c)
-    for _ in range(GOLDEN_STEPS):
-        left = f_a >= f_c  # the maximum is in [low, c]: c moves to a, a is new
-        high = np.where(left, c, high)
-        low = np.where(left, low, a)
-        new = np.where(left, high - _GOLDEN * (high - low), low + _GOLDEN * (high - low))
-        f_new = candidate_values(new)
-        a, c = np.where(left, new, c), np.where(left, a, new)
-        f_a, f_c = np.where(left, f_new, f_c), np.where(left, f_a, f_new)
+    # The peak between each candidate's neighbours, all candidates of all rows at
+    # once: Newton on the slope f' = -Σ b·w·sin(w·t) (f'' = -Σ b·w²·cos(w·t)) inside
+    # the bracket, halving it where a step would leave it. A bracket whose slope
+    # does not change sign (a window's end) holds its peak at the end that rises.
+    bc, wc = b_slow[at, which], w[at]
+    g_low, _ = _slopes(bc, wc, low)
+    g_high, _ = _slopes(bc, wc, high)
+    edge = ~((g_low > 0.0) & (g_high < 0.0))
+    x = np.where(edge, np.where(g_high >= 0.0, high, low), 0.5 * (low + high))
+    inside = np.flatnonzero(~edge)
+    lo, hi, xi = low[inside], high[inside], x[inside]
+    bi, wi = bc[inside], wc[inside]
+    for _ in range(NEWTON_STEPS):
+        g, bend = _slopes(bi, wi, xi)
+        rising = g > 0.0
+        lo, hi = np.where(rising, xi, lo), np.where(rising, hi, xi)
+        with np.errstate(all="ignore"):
+            step_to = xi - g / bend
+        fine = (bend < 0.0) & (step_to >= lo) & (step_to <= hi)  # (at the root: stays)
+        xi = np.where(fine, step_to, 0.5 * (lo + hi))
+    x[inside] = xi
     # Every sum's candidates in time order, then its window's two ends: the first
     # largest value wins.
     row_of = np.repeat(np.arange(rows), series)
     sum_of = np.tile(np.arange(series), rows)
     point_rows = np.concatenate([at, row_of, row_of])
     point_sums = np.concatenate([which, sum_of, sum_of])
-    points = np.concatenate([0.5 * (low + high), start[row_of], end[row_of]])
+    points = np.concatenate([x, start[row_of], end[row_of]])
     values = _sums(
         constant[point_rows, point_sums], b_slow[point_rows, point_sums], w[point_rows], points
     )
@@ -210,6 +213,18 @@ def maxima(
     with np.errstate(all="ignore"):
         error = np.where(single, 0.5 * curvature * (math.pi / w_fast) ** 2, 0.0)
     return Maxima(np.where(bound, best_value + fast_amplitude, best_value), best_time, bound, error)
+
+
+def _slopes(b: np.ndarray, w: np.ndarray, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """f' = -Σ bⱼ·wⱼ·sin(wⱼ·t) and f'' = -Σ bⱼ·wⱼ²·cos(wⱼ·t), element by element."""
+    slope = np.zeros(np.shape(t))
+    curvature = np.zeros(np.shape(t))
+    for k in range(b.shape[1]):
+        angle = w[:, k] * t
+        bw = b[:, k] * w[:, k]
+        slope = slope - bw * np.sin(angle)
+        curvature = curvature - bw * w[:, k] * np.cos(angle)
+    return slope, curvature
 
 
 def _sums(constant: np.ndarray, b: np.ndarray, w: np.ndarray, t: np.ndarray) -> np.ndarray:
