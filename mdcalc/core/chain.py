@@ -286,11 +286,15 @@ def _mode_shapes(
         best = np.full(lam.shape, np.inf)
         where = np.full(lam.shape, -1)
         chosen_scale = np.ones(lam.shape)
+        # the masses before a join see the left table alone: their part of the
+        # misfit grows from join to join instead of being summed again each time
+        before = (np.zeros(lam.shape), np.zeros(lam.shape))
         for join in range(n):
             usable = (right[join] != 0.0) & np.isfinite(left[join])
             scale = left[join] / right[join]
             shape = left[: join + 1] + [scale * v for v in right[join + 1 :]]
-            misfit = _misfit(j, c, lam, shape)
+            misfit = _misfit(j, c, lam, shape, join, before)
+            before = _residuals(j, c, lam, left, join, join + 1, before)
             rank = np.where(usable, np.minimum(misfit, np.finfo(float).max), np.inf)
             better = rank < best
             best = np.where(better, rank, best)
@@ -320,12 +324,35 @@ def _mode_shapes(
         return theta / norm[:, None, :], springs / norm[:, None, :]
 
 
-def _misfit(j: np.ndarray, c: np.ndarray, lam: np.ndarray, theta: list[np.ndarray]) -> np.ndarray:
-    """max |(K - λJ)·θ| over the masses, scaled by the largest term that enters it."""
+def _misfit(
+    j: np.ndarray,
+    c: np.ndarray,
+    lam: np.ndarray,
+    theta: list[np.ndarray],
+    first: int = 0,
+    before: tuple[np.ndarray, np.ndarray] | None = None,
+) -> np.ndarray:
+    """max |(K - λJ)·θ| over the masses, scaled by the largest term that enters it;
+    the masses before ``first`` given as ``before`` (their largest residual and
+    term: the max does not depend on the order it is taken in)."""
+    worst, size = _residuals(j, c, lam, theta, first, len(theta), before)
+    return np.where((size > 0.0) & np.isfinite(size), worst / size, np.inf)
+
+
+def _residuals(
+    j: np.ndarray,
+    c: np.ndarray,
+    lam: np.ndarray,
+    theta: list[np.ndarray],
+    first: int,
+    last: int,
+    before: tuple[np.ndarray, np.ndarray] | None = None,
+) -> tuple[np.ndarray, np.ndarray]:
+    """The largest |(K - λJ)·θ| of the masses first … last - 1 and the largest term
+    that enters them, on top of ``before``."""
     n = len(theta)
-    worst = np.zeros(lam.shape)
-    size = np.zeros(lam.shape)
-    for k in range(n):
+    worst, size = before if before is not None else (np.zeros(lam.shape), np.zeros(lam.shape))
+    for k in range(first, last):
         terms = [-lam * j[:, k, None] * theta[k]]
         if k > 0:
             terms.append(c[:, k - 1, None] * (theta[k] - theta[k - 1]))
@@ -337,7 +364,7 @@ def _misfit(j: np.ndarray, c: np.ndarray, lam: np.ndarray, theta: list[np.ndarra
         worst = np.maximum(worst, np.abs(total))
         for term in terms:
             size = np.maximum(size, np.abs(term))
-    return np.where((size > 0.0) & np.isfinite(size), worst / size, np.inf)
+    return worst, size
 
 
 # ---------------------------------------------------- suddenly applied torques
