@@ -274,3 +274,34 @@ def test_variator_samples_where_a_square_rounds_apart_equal_their_single_scenes(
         for key, quantity in report.results().items():
             if key.startswith("antiresonance_") and isinstance(quantity.value, float):
                 assert answer[key][index] == quantity.value, (key, index)
+
+
+def test_a_variator_study_that_draws_nothing_of_the_drive_solves_it_once(monkeypatch):
+    # vk_variator with only the motor's overload ratio drawn: every sample's drive
+    # and anti-resonance numbers are the case's own (its single scene's, bit for
+    # bit), from one periodic state, not one a sample
+    import importlib
+
+    from mdcalc.input.casefile import CaseText, validate
+
+    variator_solve = importlib.import_module("mdcalc.problems.variator.solve")
+    module = PROBLEMS["variator"].load()
+    path = CASES / "variator" / "vk_variator.toml"
+    data = tomllib.loads(path.read_text(encoding="utf-8"))
+    data.pop("expect", None)
+    base = validate(module.Case, CaseText(path, "", data))
+    sizes = []
+    real = variator_solve.drive_block
+
+    def spy(case, size, asked):
+        sizes.append(size)
+        return real(case, size, asked)
+
+    with monkeypatch.context() as patch:
+        patch.setattr(variator_solve, "drive_block", spy)
+        answer = module.sweep(base, {"motor.overload_ratio": np.array([2.0, 2.5, 3.0])})
+    assert sizes == [1]
+    alone = module.sweep(base, {"drive.load_torque": np.array([300.0])})
+    for key in ("drive_chi", "antiresonance_chi_after", "antiresonance_reduction"):
+        assert answer[key].tolist() == [alone[key][0]] * 3, key
+    assert len(set(answer["motor_critical_torque"].tolist())) == 3

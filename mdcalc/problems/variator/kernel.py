@@ -63,6 +63,10 @@ SWEEP_KEYS = {
 }
 
 
+#: The keys the drive's periodic states depend on (ψ of [clutch] gives its damping).
+DRIVE_INPUTS = ("drive.", "mechanism.", "antiresonance.", "clutch.loop_area_ratio")
+
+
 def sweep(
     case: Case, grid: dict[str, Any], wanted: Collection[str] | None = None
 ) -> dict[str, Any] | None:
@@ -109,7 +113,9 @@ def sweep(
         if arrays.drive is not None:  # (its periodic states decide the status)
             from mdcalc.problems.variator.solve import drive_block
 
-            found = drive_block(arrays, size, asked)
+            # a study that draws nothing of the drive solves its one drive once
+            shared = not any(key.startswith(DRIVE_INPUTS) for key in grid)
+            found = drive_block(case, 1, asked) if shared else drive_block(arrays, size, asked)
             values |= found[0]
             declined = declined | found[1]
         if arrays.pendulum is not None and asked("pendulum_"):
