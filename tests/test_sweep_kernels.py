@@ -234,3 +234,27 @@ def test_pieces_of_a_block_join_with_a_lost_piece_failing_only_its_rows():
     assert _joined([gone, gone], [2, 1]) is gone
     assert _joined([a, None], [2, 1]) is None
     assert _joined([a, {"y": np.array([1.0]), DECLINED: np.array([False])}], [2, 1]) is None
+
+
+def test_value_at_finds_a_number_or_says_none():
+    # the kernels' one question before they vary a key: a field, a list entry, a
+    # table entry; None past a list's end, in a section the case leaves out, or for
+    # a name the model does not have (no IndexError, no AttributeError)
+    import tomllib
+
+    from mdcalc.input.casefile import CaseText, validate
+    from mdcalc.input.model import value_at
+
+    module = PROBLEMS["acceleration"].load()
+    path = CASES / "acceleration" / "vaz2106.toml"
+    data = tomllib.loads(path.read_text(encoding="utf-8"))
+    data.pop("expect", None)
+    case = validate(module.Case, CaseText(path, "", data))
+    gears = data["transmission"]["gear_ratios"]
+    assert value_at(case, "transmission.gear_ratios.0") == gears[0]
+    assert value_at(case, f"transmission.gear_ratios.{len(gears)}") is None
+    assert value_at(case, "vehicle.mass") == data["vehicle"]["mass"]
+    assert value_at(case, "vehicle.no_such_field") is None
+    assert value_at(case, "transmission.gear_ratios.x") is None
+    if "lecture" not in data:
+        assert value_at(case, "lecture.traction_coefficient") is None

@@ -202,7 +202,7 @@ class PeriodicBlock:
         kept: list[Any] = [None, None]  # the last rows asked and their numbers
 
         def rate(rows: np.ndarray, tau: np.ndarray) -> np.ndarray:
-            if kept[0] is not rows:  # the bisection asks about the same rows 40 times
+            if kept[0] is not rows:  # the refinement asks about the same rows each step
                 kept[:] = [rows, (lam[rows][:, None, :], slopes[rows][:, None, :], drift[rows])]
             lam_rows, slope_rows, drift_rows = kept[1]
             modal = np.exp(tau[..., None] * lam_rows) * slope_rows
@@ -510,9 +510,9 @@ def periodic_maxima(
 
     Every sampled local maximum within reach of the best sample is refined, all at
     once, by regula falsi on the derivative between its neighbours (times taken
-    modulo T: the state is continuous across the period's end). With 16 samples per period
-    of the fastest mode a sample lies at most 1 - cos(π/16) ≈ 2 % of that mode's
-    amplitude below its peak, so peaks more than 5 % of the sampled range below the
+    modulo T: the state is continuous across the period's end). With 16 samples per
+    period of the fastest mode a sample lies at most 1 - cos(π/16) ≈ 2 % of that
+    mode's amplitude below its peak, so peaks more than 5 % of the sampled range below the
     best cannot win; when many ringing peaks tie, all of them are refined (up to
     ``candidates`` a row, the largest first)."""
     line = np.arange(len(rows))
@@ -549,19 +549,19 @@ def periodic_maxima(
     # The slope's root by regula falsi, Illinois' way (the end that stays twice has
     # its slope halved): superlinear, a rate evaluation a step, and never outside
     # the bracket; from a bracket of two sample steps 16 steps reach the rounding.
-    kept_low = np.zeros(len(owner), dtype=bool)
-    kept_high = np.zeros(len(owner), dtype=bool)
+    was_up = np.zeros(len(owner), dtype=bool)  # the last step moved the low end
+    was_down = np.zeros(len(owner), dtype=bool)  # ... the high end
     for _ in range(REGULA_FALSI_STEPS):
         with np.errstate(all="ignore"):
             middle = high - g_high * (high - low) / (g_high - g_low)
         middle = np.where(np.isfinite(middle), np.clip(middle, low, high), low)
         g = slope(middle)
         up = g > 0.0
-        g_high = np.where(up & kept_low, 0.5 * g_high, g_high)
-        g_low = np.where(~up & kept_high, 0.5 * g_low, g_low)
+        g_high = np.where(up & was_up, 0.5 * g_high, g_high)  # the high end kept twice
+        g_low = np.where(~up & was_down, 0.5 * g_low, g_low)  # the low end kept twice
         low, g_low = np.where(up, middle, low), np.where(up, g, g_low)
         high, g_high = np.where(up, high, middle), np.where(up, g_high, g)
-        kept_low, kept_high = up, ~up
+        was_up, was_down = up, ~up
     middle = np.where(np.abs(g_low) <= np.abs(g_high), low, high) % p
     refined = observe(who, middle[:, None])[:, 0]
     order = np.lexsort((-refined, owner))  # each row's best refined peak first

@@ -131,6 +131,25 @@ def kernel_answer(values: dict[str, Any], declined: Any, size: int) -> dict[str,
     return out
 
 
+def value_at(case: Any, key: str) -> Any:
+    """The case's value at a key path (``"drive.load_torque"``,
+    ``"torque.values.3.0"``): None where a section, field, table entry or list index
+    is not there. What a kernel asks before it varies a key."""
+    node = case
+    for part in key.split("."):
+        if isinstance(node, list):
+            if not part.isdigit() or int(part) >= len(node):
+                return None
+            node = node[int(part)]
+        elif isinstance(node, dict):
+            node = node.get(part)
+        else:
+            node = getattr(node, part, None)
+        if node is None:
+            return None
+    return node
+
+
 def with_values(case: CaseBase, values: dict[str, Any]) -> Any:
     """The case with each key path of ``values`` (``"vehicle.mass"``,
     ``"drive.stage_efficiencies.1"``) set to its value, copied on the way and not

@@ -18,8 +18,8 @@ from mdcalc.input.model import DECLINED
 #: Samples or grid points a kernel block holds: 64 Ki of a closed form take a few
 #: tens of ms, of a modal solution with its maxima in time about a second.
 BLOCK = 65_536
-#: A kernel block that takes longer than this in the calling process sends the
-#: other blocks to the process pool (when it has more than one job).
+#: A kernel whose block the probes say would take longer than this has its blocks
+#: cut into pieces for the process pool (when it has more than one job).
 HEAVY_BLOCK_SECONDS = 0.2
 
 

@@ -24,7 +24,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from mdcalc.core.units import rpm_to_rad_s
-from mdcalc.input.model import kernel_answer, with_values
+from mdcalc.input.model import kernel_answer, value_at, with_values
 from mdcalc.problems.acceleration.case import RAD_S_TO_RPM, Case
 from mdcalc.problems.acceleration.engine import EngineCurve
 from mdcalc.problems.acceleration.plan import reaches
@@ -92,7 +92,7 @@ def sweep(
     for key in grid:
         parts = key.split(".")
         pattern = ".".join("N" if p.isdigit() else p for p in parts)
-        if pattern not in SWEEP_KEYS or not _given(case, parts):
+        if pattern not in SWEEP_KEYS or value_at(case, key) is None:
             return None
     table = case.engine.torque_curve is not None
     if table and ("engine.max_power" in grid or "engine.max_speed_rpm" in grid):
@@ -134,15 +134,6 @@ def sweep(
         elif c.target.measured_time is not None:
             values["measured_time"] = c.target.measured_time
     return kernel_answer(values, declined, size)
-
-
-def _given(case: Case, parts: list[str]) -> bool:
-    node: Any = case
-    for part in parts:
-        if node is None:
-            return False
-        node = node[int(part)] if part.isdigit() else getattr(node, part, None)
-    return node is not None
 
 
 def _echo(case: Case, scene: Scene) -> dict[str, Any]:

@@ -7,7 +7,7 @@ import math
 from collections.abc import Collection
 from typing import Any
 
-from mdcalc.input.model import kernel_answer, with_values
+from mdcalc.input.model import kernel_answer, value_at, with_values
 from mdcalc.problems.hoist.case import Case
 from mdcalc.problems.hoist.drive import can_start, reduced_inertia, steady, uniform_start
 from mdcalc.problems.hoist.rope import ground_peak, hanging_closed_form
@@ -66,7 +66,7 @@ def sweep(
     for key in grid:
         parts = key.split(".")
         pattern = ".".join("N" if p.isdigit() else p for p in parts)
-        if pattern not in SWEEP_KEYS or _value_at(case, parts) is None:
+        if pattern not in SWEEP_KEYS or value_at(case, key) is None:
             return None
     case = with_values(case, {key: np.asarray(column, dtype=float) for key, column in grid.items()})
     size = max([np.size(v) for v in grid.values()] + [1])
@@ -116,9 +116,3 @@ def sweep(
             "ground_dynamic_factor": peak / rope.weight,
         }
     return kernel_answer(values, declined, size)
-
-
-def _value_at(node: Any, parts: list[str]) -> Any:
-    for part in parts:
-        node = node[int(part)] if isinstance(node, list) else getattr(node, part)
-    return node

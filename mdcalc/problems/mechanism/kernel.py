@@ -26,7 +26,7 @@ from typing import Any
 
 from mdcalc.core.units import rpm_to_rad_s
 from mdcalc.input.expr import parse
-from mdcalc.input.model import kernel_answer, with_values
+from mdcalc.input.model import kernel_answer, value_at, with_values
 from mdcalc.problems.mechanism.case import TWO_PI, VARIABLES, Case
 from mdcalc.problems.mechanism.kovylin import MAX_REFINEMENT, kovylin_step
 from mdcalc.problems.mechanism.scene import (
@@ -203,7 +203,7 @@ def sweep(
         pattern = ".".join("N" if p.isdigit() else p for p in key.split("."))
         if head == "parameters" and name in case.parameters:
             parameters[name] = np.asarray(column, dtype=float)
-        elif pattern in SWEEP_KEYS and _given(case, key):
+        elif pattern in SWEEP_KEYS and _number_at(case, key):
             others[key] = np.asarray(column, dtype=float)
         else:
             return None
@@ -272,15 +272,11 @@ def sweep(
     return kernel_answer(values, declined, size)
 
 
-def _given(case: Case, key: str) -> bool:
-    """The case holds ``key``: a field it gives, or an entry of a table it has."""
-    section, name, *index = key.split(".")
-    node = getattr(getattr(case, section), name)
-    for i in index:
-        if not isinstance(node, list) or int(i) >= len(node):
-            return False
-        node = node[int(i)]
-    return node is not None and not isinstance(node, list)
+def _number_at(case: Case, key: str) -> bool:
+    """The case holds a number at ``key``: a field it gives, or an entry of a table
+    it has (not a whole row of a two-way table)."""
+    value = value_at(case, key)
+    return value is not None and not isinstance(value, list)
 
 
 @dataclass

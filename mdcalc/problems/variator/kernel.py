@@ -10,7 +10,7 @@ from __future__ import annotations
 from collections.abc import Collection
 from typing import Any
 
-from mdcalc.input.model import kernel_answer, with_values
+from mdcalc.input.model import kernel_answer, value_at, with_values
 from mdcalc.problems.variator.case import Case
 
 #: Keys ``mdcalc sweep`` and ``mdcalc study`` may vary in the vectorized form.
@@ -78,7 +78,7 @@ def sweep(
     M_H or P_H), or an absorber some of whose samples are damped and some not."""
     import numpy as np
 
-    if any(key not in SWEEP_KEYS or _held(case, key) is None for key in grid):
+    if any(key not in SWEEP_KEYS or value_at(case, key) is None for key in grid):
         return None
     arrays = with_values(case, {key: np.asarray(v, dtype=float) for key, v in grid.items()})
     size = max([np.size(v) for v in grid.values()] + [1])
@@ -123,10 +123,3 @@ def sweep(
 
             values |= pendulum_values(arrays.pendulum)
     return kernel_answer(values, declined, size)
-
-
-def _held(case: Case, key: str) -> Any:
-    """The case's value at ``key``: None where its section or field is not given."""
-    section, name = key.split(".")
-    part = getattr(case, section)
-    return None if part is None else getattr(part, name)
