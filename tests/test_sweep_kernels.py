@@ -258,3 +258,36 @@ def test_value_at_finds_a_number_or_says_none():
     assert value_at(case, "transmission.gear_ratios.x") is None
     if "lecture" not in data:
         assert value_at(case, "lecture.traction_coefficient") is None
+
+
+def test_a_chain_kernel_in_tiles_gives_each_row_its_own_numbers(monkeypatch):
+    # resonance's modal solution runs TILE_ROWS chains a call (its arrays stay in
+    # the cache): a block of more tiles than one, with a declined row (no damping
+    # moves in mode 2 where the cranks' damping is zero) in its last tile, gives the
+    # numbers of the block computed whole, bit for bit.
+    import tomllib
+
+    from mdcalc.input.casefile import CaseText, validate
+    from mdcalc.input.model import DECLINED
+    from mdcalc.problems.resonance import kernel
+
+    module = PROBLEMS["resonance"].load()
+    path = CASES / "resonance" / "inline_six.toml"
+    data = tomllib.loads(path.read_text(encoding="utf-8"))
+    data.pop("expect", None)
+    case = validate(module.Case, CaseText(path, "", data))
+    rng = np.random.default_rng(3)
+    grid = {
+        "chain.stiffnesses.6": 2.0e4 * rng.uniform(0.8, 1.2, 1000),
+        "chain.damping.0": np.where(np.arange(1000) == 990, 0.0, 1.0),
+        "resonance.harmonic_torque": 50.0,
+    }
+    for k in range(1, 6):
+        grid[f"chain.damping.{k}"] = grid["chain.damping.0"]
+    whole = kernel.sweep(case, grid)
+    monkeypatch.setattr(kernel, "TILE_ROWS", 128)
+    tiled = kernel.sweep(case, grid)
+    assert whole is not None and tiled is not None and list(tiled) == list(whole)
+    assert tiled[DECLINED].tolist() == [k == 990 for k in range(1000)]
+    for key, values in whole.items():
+        assert np.array_equal(values, tiled[key], equal_nan=True), key

@@ -8,7 +8,7 @@ from __future__ import annotations
 from collections.abc import Collection
 from typing import Any
 
-from mdcalc.input.model import kernel_answer, with_values
+from mdcalc.input.model import in_tiles, kernel_answer, with_values
 from mdcalc.problems.resonance.case import Case
 from mdcalc.problems.resonance.chain import (
     crank_sum,
@@ -38,6 +38,10 @@ SWEEP_KEYS = {
 #: run's absolute tolerance where damping near critical leaves a radius of 10⁻¹¹
 #: (cases/extreme/resonance_mathieu_critical_damping.toml: 3·10⁻¹⁷ apart).
 ODE_REFERENCED = {f"floquet_radius_{k + 1}": (1e-9, 1e-15) for k in range(8)}
+
+#: Chains a call of the modal solution takes at once: its tables of a few (B, n)
+#: arrays stay in the cache (2048 chains of inline_six: 1.35x the rate of 65 536).
+TILE_ROWS = 2048
 
 
 def sweep(
@@ -69,6 +73,11 @@ def sweep(
         and case.chain.damping is None
     ):
         return None
+    floquet = points and (wanted is None or any(k.startswith("floquet_") for k in wanted))
+    if not floquet:  # (the Floquet runs step all their rows at once)
+        tiles = in_tiles(sweep, case, grid, wanted, TILE_ROWS)
+        if tiles is not None:
+            return tiles
     arrays = with_values(case, {key: np.asarray(v, dtype=float) for key, v in grid.items()})
     size = max([np.size(v) for v in grid.values()] + [1])
     values: dict[str, Any] = {}
@@ -76,7 +85,7 @@ def sweep(
     with np.errstate(all="ignore"):
         if arrays.chain is not None:
             declined = _chain(arrays, size, values)
-        if points and (wanted is None or any(k.startswith("floquet_") for k in wanted)):
+        if floquet:
             declined = declined | _floquet(arrays.mathieu, size, values)
     for k, m in enumerate(case.measured or []):
         values[f"measured_frequency_{k + 1}"] = m.speed_rpm * m.order / HZ_TO_RPM
