@@ -124,28 +124,35 @@ def maxima(
 
     def grid_values(at: np.ndarray, index: np.ndarray) -> np.ndarray:
         """The S sums of rows ``at`` at their samples ``index`` (a run of consecutive
-        sample numbers, shared by the rows): (S, G, K), each cosine evaluated once for
-        all the sums of its row. The angle w·(t₀ + j·Δt) splits at a multiple of RUN
-        samples, w·(t₀ + m·Δt) + w·r·Δt, so that a run of RUN samples costs two
-        cosines and two sines of each part, and a product and a difference a sample
-        (cos(A + B) = cos A·cos B - sin A·sin B), where a cosine of each sample cost
-        ten times as much; the split rounds the angle no worse than w·t itself."""
+        sample numbers, shared by the rows): (G, S, K). The angle w·(t₀ + j·Δt)
+        splits at a multiple of RUN samples, w·(t₀ + m·Δt) + w·r·Δt, so that
+        B·cos(A + R) = (B·cos A)·cos R - (B·sin A)·sin R: the factors of the anchors
+        (m) and of the run (r) are cosines of their own, and each run of RUN samples
+        of a sum is one small matrix product over the modes (and the constant),
+        where a cosine of each sample cost ten times as much; the split rounds the
+        angle no worse than w·t itself."""
         first = int(index[0]) - int(index[0]) % RUN  # a multiple of RUN at or below
         anchors = -(-(int(index[-1]) - first + 1) // RUN)
+        size = len(at)
         t0, dt = start[at][:, None], step[at][:, None]
         t_anchor = t0 + dt * (first + RUN * np.arange(anchors))[None, :]  # (G, M)
         t_run = dt * np.arange(RUN)[None, :]  # (G, RUN)
-        cosines = np.empty((len(at), modes, anchors, RUN))
+        # each sum's anchor factors (G, S, M, 2·modes + 1) times the run's (G, ·, RUN)
+        factors = np.empty((size, series, anchors, 2 * modes + 1))
+        runs = np.empty((size, 2 * modes + 1, RUN))
         for k in range(modes):
             wk = w[at, k][:, None]
-            a, b = wk * t_anchor, wk * t_run
-            np.multiply(np.cos(a)[:, :, None], np.cos(b)[:, None, :], out=cosines[:, k])
-            cosines[:, k] -= np.sin(a)[:, :, None] * np.sin(b)[:, None, :]
-        # the sums of a row: its (S × modes) amplitudes times its (modes × samples) cosines
-        total = b_slow[at] @ cosines.reshape(len(at), modes, anchors * RUN)
-        total += constant[at][:, :, None]
+            a, r = wk * t_anchor, wk * t_run
+            bk = b_slow[at, :, k][:, :, None]
+            factors[:, :, :, 2 * k] = bk * np.cos(a)[:, None, :]
+            factors[:, :, :, 2 * k + 1] = bk * -np.sin(a)[:, None, :]
+            runs[:, 2 * k] = np.cos(r)
+            runs[:, 2 * k + 1] = np.sin(r)
+        factors[:, :, :, -1] = constant[at][:, :, None]
+        runs[:, -1] = 1.0
+        total = factors.reshape(size, series * anchors, -1) @ runs
         skip = int(index[0]) - first
-        return total.transpose(1, 0, 2)[:, :, skip : skip + len(index)]
+        return total.reshape(size, series, anchors * RUN)[:, :, skip : skip + len(index)]
 
     # Candidates (row, sum, sample index), by tiles of rows of like sample counts:
     # rows grouped by the power of two above their count, so that a tile pads a row
@@ -243,35 +250,49 @@ def _candidates(
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The sampled local maxima within the slack of the best sample of each sum, for
     the rows of ``group`` (a sample past a row's count is no sample): their rows,
-    sums and sample indices."""
+    sums and sample indices. The few samples within the slack are found first (a
+    comparison and a flat search of the block), the local maxima among them after."""
     width = int(np.max(counts))
     series = slack.shape[1]
     chunk = max(1, _TILE // (series * len(group)))
     limit = counts[:, None]
 
     def sampled(index: np.ndarray) -> np.ndarray:
-        inside = (index >= 0) & (index < limit)
-        return np.where(inside[None], grid_values(group, index[0]), -np.inf)
+        """The sums at ``index``, -inf where a row has no such sample: before its
+        first (index -1) and from its count on (the columns past the smallest)."""
+        values = grid_values(group, index)
+        values[:, :, : int(np.searchsorted(index, 0))] = -np.inf
+        cut = int(np.searchsorted(index, np.min(counts)))
+        if cut < len(index):
+            outside = index[None, cut:] >= limit  # (G, K')
+            values[:, :, cut:] += np.where(outside, -np.inf, 0.0)[:, None, :]
+        return values
 
     whole = None
     if width <= chunk:  # one tile: evaluated once for both passes
-        whole = sampled(np.arange(-1, width + 1)[None, :])
+        whole = sampled(np.arange(-1, width + 1))
         best = np.max(whole, axis=2)
     else:
-        best = np.full((series, len(group)), -np.inf)
+        best = np.full((len(group), series), -np.inf)
         for first in range(0, width, chunk):  # the best sample of each sum
-            index = np.arange(first, min(first + chunk, width))[None, :]
+            index = np.arange(first, min(first + chunk, width))
             best = np.maximum(best, np.max(sampled(index), axis=2))
-    floor = (best - slack[group].T)[:, :, None]
+    floor = (best - slack[group])[:, :, None]
     rows, sums, indices = [], [], []
     for first in range(0, width, chunk):  # the local maxima near it
         index = np.arange(first - 1, min(first + chunk + 1, width + 1))
-        values = whole if whole is not None else sampled(index[None, :])
+        values = whole if whole is not None else sampled(index)
         middle = values[:, :, 1:-1]
-        peak = (middle >= values[:, :, :-2]) & (middle >= values[:, :, 2:])
-        inside = (index[1:-1][None, :] >= 0) & (index[1:-1][None, :] < limit)
-        which, row, col = np.nonzero(peak & inside[None] & (middle >= floor))
-        rows.append(group[row])
-        sums.append(which)
-        indices.append(index[1:-1][col])
+        row, which, col = np.unravel_index(np.flatnonzero(middle >= floor), middle.shape)
+        here = values[row, which, col + 1]
+        at = index[col + 1]
+        keep = (
+            (here >= values[row, which, col])
+            & (here >= values[row, which, col + 2])
+            & (at >= 0)
+            & (at < counts[row])
+        )
+        rows.append(group[row[keep]])
+        sums.append(which[keep])
+        indices.append(at[keep])
     return np.concatenate(rows), np.concatenate(sums), np.concatenate(indices)
