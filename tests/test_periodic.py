@@ -38,10 +38,10 @@ from mdcalc.core.periodic import (
     exact_periodic,
     fourier_periodic,
     maximum_of,
-    ode_periodic,
     periodic_maximum,
     samples_for,
 )
+from mdcalc.core.periodic_ode import ode_periodic
 
 # ----------------------------------------------------------------------------- cases
 
@@ -704,9 +704,10 @@ def test_a_block_of_states_gives_every_row_its_single_numbers_bit_for_bit() -> N
 
 
 def test_the_sampled_grid_keeps_the_exact_exponentials_digits() -> None:
-    # the maxima's grid multiplies powers of e^{λh} between exact exponentials: its
-    # values agree with the state's own observe (exact exponentials) to 1e-12 of
-    # the modal part's scale
+    # the maxima's grid multiplies powers of e^{λh} between exact exponentials (and
+    # adds the level and drift in the same matrix product): its values agree with
+    # the state's own observe (exact exponentials) to 1e-12 of the modal part's
+    # scale plus the level's and drift's
     rng = np.random.default_rng(5)
     for system in _two_coordinate_block(rng, 12)[1:]:
         state = exact_periodic(system)
@@ -715,14 +716,16 @@ def test_the_sampled_grid_keeps_the_exact_exponentials_digits() -> None:
         tau = np.arange(samples) * (system.period / samples)
         exact = state.observe(w, tau)
         weights = (w @ state.vectors) * state.coefficients
-        grid = float(w @ state.p0) + float(w @ state.p1) * tau
-        grid = (
-            grid
-            + periodic._modal_grid(
-                weights[None], state.eigenvalues[None], np.array([system.period / samples]), samples
-            )[0]
-        )
+        grid = periodic._grid(
+            np.array([float(w @ state.p0)]),
+            np.array([float(w @ state.p1)]),
+            weights[None],
+            state.eigenvalues[None],
+            np.array([system.period / samples]),
+            samples,
+        )[0]
         scale = float(np.sum(np.abs(weights)))
+        scale += abs(float(w @ state.p0)) + abs(float(w @ state.p1)) * system.period
         assert np.max(np.abs(grid - exact)) <= 1e-12 * scale
 
 

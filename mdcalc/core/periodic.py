@@ -17,9 +17,10 @@ Three ways to the periodic state, each with its own error:
   u - ū = -u₁·(T/π)·Σ sin(kΩτ)/k, each through the frequency response
   (K - k²Ω²M + ikΩC)⁻¹. The forcing's harmonics fall off as 1/k only, so a stiff
   system (natural frequencies far above Ω) needs many of them.
-* :func:`ode_periodic` -- time integration by shooting: the period map of a
-  linear system is affine, so one period integrated from 2n + 1 starts gives the
-  periodic start, and one more period its maxima (events on the derivative).
+* :func:`~mdcalc.core.periodic_ode.ode_periodic` (its own module) -- time
+  integration by shooting: the period map of a linear system is affine, so one
+  period integrated from 2n + 1 starts gives the periodic start, and one more
+  period its maxima (events on the derivative).
 
 Maxima of an observable w·(x, x') over a period come from samples that resolve the
 fastest mode, refined by regula falsi on the derivative (:func:`periodic_maximum`).
@@ -39,8 +40,6 @@ REGULA_FALSI_STEPS = 16
 #: Samples per period of the fastest mode when searching for a maximum.
 SAMPLES_PER_MODE_PERIOD = 16
 MAX_SAMPLES = 2**20
-#: solve_ivp methods that take a Jacobian.
-IMPLICIT = ("Radau", "BDF", "LSODA")
 
 
 class Unbounded(ArithmeticError):
@@ -216,8 +215,7 @@ class PeriodicBlock:
             parts = max(1, -(-len(group) * int(count) * width // BLOCK_CELLS))
             for rows in np.array_split(group, parts):
                 h = self.period[rows] / count
-                grid = level[rows][:, None] + drift[rows][:, None] * (np.arange(count) * h[:, None])
-                grid += _modal_grid(weights[rows], lam[rows], h, int(count))
+                grid = _grid(level[rows], drift[rows], weights[rows], lam[rows], h, int(count))
                 values[rows], times[rows] = periodic_maxima(
                     observe, rate, self.period[rows], int(count), rows, grid
                 )
@@ -228,17 +226,23 @@ class PeriodicBlock:
 RUN = 32
 
 
-def _modal_grid(weights: np.ndarray, lam: np.ndarray, h: np.ndarray, count: int) -> np.ndarray:
-    """Re Σᵢ wᵢ·e^{λᵢ·jh} for j = 0 … count - 1 of each row: an exact exponential at
-    every :data:`RUN`-th sample, times the powers of e^{λh} between (a product per
-    sample, not an exponential; round-off grows to about RUN·ε of the modal part)."""
+def _grid(
+    level: np.ndarray,
+    drift: np.ndarray,
+    weights: np.ndarray,
+    lam: np.ndarray,
+    h: np.ndarray,
+    count: int,
+) -> np.ndarray:
+    """level + drift·jh + Re Σᵢ wᵢ·e^{λᵢ·jh} for j = 0 … count - 1 of each row: an
+    exact exponential at every :data:`RUN`-th sample, times the powers of e^{λh}
+    between (a product per sample, not an exponential; round-off grows to about
+    RUN·ε of the modal part). With j = m·RUN + r, each run of a row is one small
+    matrix product: its anchors' factors (w·e^{λ·mRUN·h} in real and imaginary
+    parts, the level and drift there, the drift's step) by the run's (the powers'
+    parts, 1, r)."""
     k, width = lam.shape
     run = min(RUN, count)
-    step = np.exp(h[:, None] * lam)
-    powers = np.ones((k, run, width), dtype=complex)
-    powers[:, 1:] = step[:, None, :]
-    powers = np.cumprod(powers, axis=1)
-    anchors = np.exp((np.arange(0, count, run) * h[:, None])[..., None] * lam[:, None, :])
     # A conjugate pair of modes (eig gives them side by side) sums to twice the real
     # part of the first: its partner is not evaluated (to the round-off of the
     # partner's weight, which is the first's conjugate up to it)
@@ -251,12 +255,33 @@ def _modal_grid(weights: np.ndarray, lam: np.ndarray, h: np.ndarray, count: int)
         weights[:, i + 1] = np.where(pair, 0.0, weights[:, i + 1])
         taken = pair
         skipped[i + 1] = bool(np.all(pair))
-    anchors *= weights[:, None, :]
-    total = np.zeros((k, count // run, run))
-    for i in np.flatnonzero(~skipped).tolist():  # mode by mode: Re(a·p) = a'·p' - a''·p''
-        total += anchors[:, :, None, i].real * powers[:, None, :, i].real
-        total -= anchors[:, :, None, i].imag * powers[:, None, :, i].imag
-    return total.reshape(k, count)
+    used = np.flatnonzero(~skipped)
+    lam, weights = lam[:, used], weights[:, used]
+    step = np.exp(h[:, None] * lam)
+    powers = np.ones((k, run, len(used)), dtype=complex)
+    powers[:, 1:] = step[:, None, :]
+    powers = np.cumprod(powers, axis=1)
+    start = np.arange(0, count, run) * h[:, None]  # (k, M): the anchors' times
+    anchors = np.exp(start[..., None] * lam[:, None, :]) * weights[:, None, :]
+    factors = np.concatenate(
+        [
+            anchors.real,
+            -anchors.imag,
+            (level[:, None] + drift[:, None] * start)[..., None],
+            np.broadcast_to((drift * h)[:, None, None], start.shape + (1,)),
+        ],
+        axis=2,
+    )
+    runs = np.concatenate(
+        [
+            powers.real,
+            powers.imag,
+            np.ones((k, run, 1)),
+            np.broadcast_to(np.arange(run, dtype=float)[None, :, None], (k, run, 1)),
+        ],
+        axis=2,
+    )
+    return (factors @ runs.transpose(0, 2, 1)).reshape(k, count)
 
 
 #: Complex exponentials evaluated at once when a block of states is sampled.
@@ -516,23 +541,33 @@ def periodic_maxima(
     best cannot win; when many ringing peaks tie, all of them are refined (up to
     ``candidates`` a row, the largest first)."""
     line = np.arange(len(rows))
-    tau = np.arange(samples)[None, :] * (period / samples)[:, None]
-    values = observe(rows, tau) if sampled is None else sampled
-    left, right = np.roll(values, 1, axis=1), np.roll(values, -1, axis=1)
-    peaks = (values >= left) & (values >= right)
-    top = np.argmax(values, axis=1)
-    flat = ~np.any(peaks, axis=1)  # flat: every sample ties
-    peaks[line[flat], top[flat]] = True
-    best_value, best_time = values[line, top], tau[line, top]
-    margin = 0.05 * (np.max(values, axis=1) - np.min(values, axis=1))
-    peaks &= values >= (best_value - margin)[:, None]
-    for i in np.flatnonzero(np.sum(peaks, axis=1) > candidates):  # many ringing ties
-        found = np.flatnonzero(peaks[i])
-        peaks[i] = False
-        peaks[i, found[np.argsort(values[i, found])[::-1][:candidates]]] = True
-    owner, where = np.nonzero(peaks)
-    h, p = (period / samples)[owner], period[owner]
-    low, high = tau[owner, where] - h, tau[owner, where] + h
+    step = period / samples
+    if sampled is None:
+        values = observe(rows, np.arange(samples)[None, :] * step[:, None])
+    else:
+        values = sampled
+    top = np.argmax(values, axis=1)  # a local maximum of its row, or a row of NaN
+    best_value, best_time = values[line, top], top * step
+    margin = 0.05 * (best_value - np.min(values, axis=1))
+    # the samples within reach of the best (few: one comparison and a flat search),
+    # then the local maxima among them, neighbours taken across the period's end
+    near = np.flatnonzero(values >= (best_value - margin)[:, None])
+    owner, where = np.divmod(near, samples)
+    here = values.ravel()[near]
+    peak = (here >= values[owner, (where - 1) % samples]) & (
+        here >= values[owner, (where + 1) % samples]
+    )
+    owner, where, here = owner[peak], where[peak], here[peak]
+    crowded = np.flatnonzero(np.bincount(owner, minlength=len(rows)) > candidates)
+    if crowded.size:  # many ringing ties: a row's largest ``candidates``
+        keep = np.ones(len(owner), dtype=bool)
+        for i in crowded:
+            found = np.flatnonzero(owner == i)
+            keep[found] = False
+            keep[found[np.argsort(here[found])[::-1][:candidates]]] = True
+        owner, where = owner[keep], where[keep]
+    h, p = step[owner], period[owner]
+    low, high = where * h - h, where * h + h
 
     who = rows[owner]  # one array for the calls that follow (a sampler may keep its rows)
 
@@ -599,80 +634,3 @@ def maximum_of(
         candidates,
     )
     return PeriodicMaximum(value, time, samples, resolved)
-
-
-# ------------------------------------------------------------------------ ODE
-
-
-@dataclass(frozen=True)
-class OdePeriodic:
-    maxima: list[float]  # per observable, over the periodic state's period
-    evaluations: int
-
-
-def ode_periodic(
-    system: RampSystem,
-    observables: list[Observable],
-    rtol: float,
-    method: str,
-) -> OdePeriodic:
-    """Periodic state by shooting: the period map of a linear system is affine,
-    y(T) = Φ·y(0) + γ. One integration over a period from y = 0 (γ) and from the
-    2n unit states (the columns of Φ) gives the periodic start from
-    (I - Φ)·y₀ = γ; one more period from y₀ gives the maxima, from events on the
-    derivative of each observable. No transient has to die out: lightly damped
-    and undamped systems cost the same."""
-    from mdcalc.core.ode import advance
-
-    a = system.first_order()
-    t = system.period
-    n2 = 2 * system.size
-    g0, g1 = system.load(0.0), system.load(t) - system.load(0.0)
-    g1 = g1 / t
-
-    def bundle(tau: float, z: np.ndarray) -> np.ndarray:
-        columns = a @ z.reshape(n2, n2 + 1)
-        columns[:, 0] += g0 + g1 * tau
-        return columns.ravel()
-
-    # the response's scale: the static part, or the swing of the ramp's own part
-    swing = np.linalg.solve(system.stiffness, system.shape * system.start)
-    scale = max(float(np.max(np.abs(system.static()))), float(np.max(np.abs(swing))), 1e-300)
-    # the forced column is on the scale of the response, the unit columns on 1
-    atol = np.tile(np.concatenate([[scale], np.ones(n2)]), n2) * rtol * 1e-3
-    starts = np.zeros((n2, n2 + 1))
-    starts[:, 1:] = np.eye(n2)
-    jac = np.kron(a, np.eye(n2 + 1)) if method in IMPLICIT else None
-    segment = advance(bundle, 0.0, starts.ravel(), t, rtol=rtol, atol=atol, method=method, jac=jac)
-    end = segment.y.reshape(n2, n2 + 1)
-    gamma, phi = end[:, 0], end[:, 1:]
-    y0 = np.linalg.solve(np.eye(n2) - phi, gamma)
-
-    def rhs(tau: float, y: np.ndarray) -> np.ndarray:
-        return a @ y + g0 + g1 * tau
-
-    watch = [(_rate_event(a, g0, g1, w), -1) for w in observables]
-    last = advance(
-        rhs,
-        0.0,
-        y0,
-        t,
-        rtol=rtol,
-        atol=scale * rtol * 1e-3,
-        method=method,
-        watch=watch,
-        jac=a if method in IMPLICIT else None,
-    )
-    maxima = [max(float(w @ y0), float(w @ last.y)) for w in observables]
-    for index, _time, state in last.hits:
-        maxima[index] = max(maxima[index], float(observables[index] @ state))
-    return OdePeriodic(maxima, segment.nfev + last.nfev)
-
-
-def _rate_event(
-    a: np.ndarray, g0: np.ndarray, g1: np.ndarray, w: Observable
-) -> Callable[[float, np.ndarray], float]:
-    def event(tau: float, y: np.ndarray) -> float:
-        return float(w @ (a @ y + g0 + g1 * tau))
-
-    return event

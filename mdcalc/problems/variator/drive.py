@@ -13,6 +13,7 @@ import numpy as np
 
 from mdcalc.core import periodic
 from mdcalc.core.ode import IMPORTS as ODE_IMPORTS
+from mdcalc.core.periodic_ode import ode_periodic
 from mdcalc.methods import Method, NotApplicable
 from mdcalc.problems.variator.case import Drive
 from mdcalc.problems.variator.transfer import Transfer
@@ -220,7 +221,7 @@ def _drive_methods(
                     f"about {estimate:.2g} evaluations: the fastest mode turns "
                     f"{cycles:.3g} times a period (budget {EVALUATION_BUDGET:.0e})"
                 )
-            run = periodic.ode_periodic(system, [w for _, w, _ in observables], rtol, solver)
+            run = ode_periodic(system, [w for _, w, _ in observables], rtol, solver)
             return values(run.maxima)
 
         methods.append(
