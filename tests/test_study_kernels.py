@@ -305,3 +305,59 @@ def test_a_variator_study_that_draws_nothing_of_the_drive_solves_it_once(monkeyp
     for key in ("drive_chi", "antiresonance_chi_after", "antiresonance_reduction"):
         assert answer[key].tolist() == [alone[key][0]] * 3, key
     assert len(set(answer["motor_critical_torque"].tolist())) == 3
+
+
+def test_acceleration_kernel_draws_a_torque_table_and_its_rev_limit(monkeypatch):
+    # A study may draw a torque table's values and the rev limit over it: each row
+    # then has its own table, its own peak-torque launch speed and maximum-power
+    # shift speed. The kernel against single scenes (their reference alone) on 12
+    # samples; and, independently of mdcalc, the launch speed is the table's
+    # highest point and the shift speed the maximum of M·ω on a fine grid.
+    from mdcalc import methods
+    from mdcalc.input.casefile import CaseText, validate
+    from mdcalc.runs.runner import solve_model
+
+    module = PROBLEMS["acceleration"].load()
+    speeds = [1000.0, 2000.0, 3000.0, 4000.0, 5000.0, 6000.0]
+    data = tomllib.loads((CASES / "acceleration" / "vaz2106.toml").read_text(encoding="utf-8"))
+    data.pop("expect")
+    data["engine"] = {
+        "torque_curve": {"speed_rpm": speeds, "torque": [90.0, 110.0, 118.0, 116.0, 108.0, 95.0]},
+        "max_speed_rpm": 6000.0,
+    }
+    path = Path("table.toml")
+    base = validate(module.Case, CaseText(path, "", data))
+    rng = np.random.default_rng(4)
+    n = 12
+    grid = {
+        "engine.torque_curve.torque.2": 118.0 * rng.uniform(0.9, 1.05, n),
+        "engine.torque_curve.torque.3": 116.0 * rng.uniform(0.95, 1.1, n),
+        "engine.torque_curve.torque.5": 95.0 * rng.uniform(0.8, 1.2, n),
+        "engine.max_speed_rpm": rng.uniform(5200.0, 6000.0, n),
+    }
+    answer = module.sweep(base, grid)
+    assert answer is not None and not np.any(answer[DECLINED])
+    monkeypatch.setattr(methods, "MIN_TIMING_SECONDS", 2e-5)
+    monkeypatch.setattr(methods, "REFERENCE_ONLY", True)
+    for i in range(n):
+        sample = copy.deepcopy(data)
+        torques = sample["engine"]["torque_curve"]["torque"]
+        for j in (2, 3, 5):
+            torques[j] = float(grid[f"engine.torque_curve.torque.{j}"][i])
+        limit = float(grid["engine.max_speed_rpm"][i])
+        sample["engine"]["max_speed_rpm"] = limit
+        # independent: the launch speed is the table's highest point; the shift
+        # speed maximizes M·ω, M interpolated linearly, up to the rev limit
+        assert answer["launch_speed_rpm"][i] == pytest.approx(speeds[int(np.argmax(torques))])
+        fine = np.linspace(speeds[0], limit, 200_001)
+        power = np.interp(fine, speeds, torques) * fine
+        span = (limit - speeds[0]) / 512  # the candidates' grid step
+        assert abs(answer["shift_speed_rpm"][i] - fine[np.argmax(power)]) <= span
+        _, report = solve_model(
+            "acceleration", module, validate(module.Case, CaseText(path, "", sample)), None
+        )
+        assert report.status == "ok", report.message
+        for key, q in report.results().items():
+            if isinstance(q.value, int | float) and not isinstance(q.value, bool):
+                rel, tol = tolerance(module, key, 1e-9)
+                assert answer[key][i] == pytest.approx(float(q.value), rel=rel, abs=tol), (key, i)

@@ -44,9 +44,17 @@ class EngineCurve:
             return math.inf
         return (b + math.sqrt(disc)) / (2.0 * c) * self.rated_speed
 
+    @property
+    def rows(self) -> bool:
+        """A table whose torques are arrays over a block of scenes (a study draws them)."""
+        return any(not isinstance(m, float | int) for m in self.torques)
+
     def torque(self, omega: Any) -> Any:
         """M_e(ω) [N·m]; a table is interpolated linearly and held at its ends.
-        ``omega`` (and the rated torque) may be numpy arrays over a block of scenes."""
+        ``omega`` (and the rated torque, or a table's torques) may be numpy arrays
+        over a block of scenes, ``omega`` with more axes after the block's."""
+        if self.is_table and self.rows:
+            return self._table_rows(omega)
         if self.is_table and not isinstance(omega, float | int):
             import numpy as np
 
@@ -64,6 +72,29 @@ class EngineCurve:
         x = omega / self.rated_speed
         return self.rated_torque * (a + b * x - c * x * x)  # (7.37) read as Leiderman's
 
+    def _table_rows(self, omega: Any) -> Any:
+        """The table's interpolation, each row with its own torques (arrays over the
+        block of B rows, which sit on ``omega``'s last axis as numpy broadcasts
+        them): the float path's formula, M[k-1] + w·(M[k] - M[k-1]), elementwise."""
+        import numpy as np
+
+        size, count = max(np.size(m) for m in self.torques), len(self.torques)
+        # row by row (B, K), flat: a row's entry j at row·K + j
+        table = np.stack(
+            [np.broadcast_to(np.asarray(m, dtype=float), (size,)) for m in self.torques]
+        )
+        flat = table.T.ravel()
+        x = np.asarray(omega, dtype=float)
+        x = np.broadcast_to(x, np.broadcast_shapes(x.shape, (size,)))
+        start = np.broadcast_to(np.arange(0, size * count, count), x.shape)
+        speeds = np.asarray(self.speeds)
+        k = np.clip(np.searchsorted(speeds, x, side="right"), 1, count - 1)
+        w = (x - speeds[k - 1]) / (speeds[k] - speeds[k - 1])
+        lower, upper = flat[start + (k - 1)], flat[start + k]
+        inside = lower + w * (upper - lower)
+        end = np.where(x >= speeds[-1], flat[start + (count - 1)], inside)
+        return np.where(x <= speeds[0], flat[start], end)
+
     def _candidates(self, limit: float) -> list[float]:
         """Table speeds up to ``limit``, ``limit`` itself and a fine grid: where a
         piecewise-linear torque, or the piecewise-quadratic power M·ω, peaks."""
@@ -71,8 +102,29 @@ class EngineCurve:
         grid = [self.low + (limit - self.low) * k / 512 for k in range(513)]
         return sorted({*inside, *grid})
 
+    def _best_rows(self, limit: Any, power: bool) -> Any:
+        """ω of the largest torque (or power M·ω) of each row of a block, over the
+        candidates of :meth:`_candidates` in rising order, the first of equals: as
+        the float path's ``max``."""
+        import numpy as np
+
+        limit = np.asarray(limit, dtype=float)
+        size = max([np.size(limit)] + [np.size(m) for m in self.torques])
+        limit = np.broadcast_to(limit, (size,))
+        grid = self.low + (limit[None, :] - self.low) * np.arange(513)[:, None] / 512
+        speeds = np.broadcast_to(np.asarray(self.speeds)[:, None], (len(self.speeds), size))
+        speeds = np.where(speeds <= limit[None, :], speeds, np.nan)  # past the limit: none
+        candidates = np.sort(np.concatenate([speeds, grid], axis=0), axis=0)  # (C, rows)
+        score = self._table_rows(candidates)  # the float path's formula, not np.interp
+        score = score * candidates if power else score
+        best = np.argmax(np.where(np.isnan(candidates), -np.inf, score), axis=0)
+        return candidates[best, np.arange(size)]
+
     def peak(self, limit: float) -> tuple[float, float]:
         """(ω, M) at the maximum torque on [low, limit]."""
+        if self.is_table and (self.rows or not isinstance(limit, float | int)):
+            omega = self._best_rows(limit, power=False)
+            return omega, self.torque(omega)
         if self.is_table:
             omega = max(self._candidates(limit), key=self.torque)
             return omega, self.torque(omega)
@@ -86,4 +138,6 @@ class EngineCurve:
         """ω of the maximum power M·ω on [low, limit]: n_E of Leiderman's curve."""
         if not self.is_table:
             return of(self.rated_speed, limit).minimum(self.rated_speed, limit)
+        if self.rows or not isinstance(limit, float | int):
+            return self._best_rows(limit, power=True)
         return max(self._candidates(limit), key=lambda w: w * self.torque(w))

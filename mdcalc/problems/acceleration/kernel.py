@@ -62,6 +62,7 @@ SWEEP_KEYS = {
     "engine.max_torque": "M_E (checked)",
     "engine.max_torque_speed_rpm": "n_M (the launch speed by default)",
     "engine.max_speed_rpm": "rev limit",
+    "engine.torque_curve.torque.N": "M at a speed of the torque table",
     "transmission.shift_speed_rpm": "shift speed",
     "transmission.launch_speed_rpm": "launch speed",
     "lecture.traction_coefficient": "A/m",
@@ -94,9 +95,8 @@ def sweep(
         pattern = ".".join("N" if p.isdigit() else p for p in parts)
         if pattern not in SWEEP_KEYS or value_at(case, key) is None:
             return None
-    table = case.engine.torque_curve is not None
-    if table and ("engine.max_power" in grid or "engine.max_speed_rpm" in grid):
-        return None  # a table's peak over a limit drawn row by row: point by point
+    if case.engine.torque_curve is not None and "engine.max_power" in grid:
+        return None  # a number the table replaces: each point says so alone
     size = max([np.size(v) for v in grid.values()] + [1])
     c = with_values(case, {key: np.asarray(v, dtype=float) for key, v in grid.items()})
     scene = scene_of(c)
@@ -176,9 +176,12 @@ def take(scene: Scene, rows: Any) -> Scene:
             return value[rows]
         if isinstance(value, tuple):
             return tuple(part(v) for v in value)
-        if isinstance(value, EngineCurve):  # M_N and ω_E arrays where a study draws them
+        if isinstance(value, EngineCurve):  # M_N, ω_E, a table's M where a study draws them
             return dataclasses.replace(
-                value, rated_torque=part(value.rated_torque), rated_speed=part(value.rated_speed)
+                value,
+                rated_torque=part(value.rated_torque),
+                rated_speed=part(value.rated_speed),
+                torques=part(value.torques),
             )
         return value
 
