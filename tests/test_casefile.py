@@ -31,6 +31,36 @@ name = "b"
     assert lines[("drive", "shafts", 1, "name")] == 10
 
 
+def test_key_lines_of_a_table_under_an_array_of_tables_name_its_last_item():
+    # [drive.shafts.inertia] after the second [[drive.shafts]] is shafts[1].inertia
+    # (found by tests/test_fuzz.py: the message pointed at the [[drive.shafts]]
+    # header, line 6, instead of line 9); a nested array of tables is counted
+    # within its own item
+    text = """[[drive.shafts]]
+name = "a"
+[drive.shafts.inertia]
+x = 1
+
+[[drive.shafts]]
+name = "b"
+
+[drive.shafts.inertia]
+x = 2
+[[drive.shafts.pieces]]
+y = 1
+[[drive.shafts.pieces]]
+y = 2
+"""
+    lines = _key_lines(text)
+    assert lines[("drive", "shafts", 0, "inertia")] == 3
+    assert lines[("drive", "shafts", 0, "inertia", "x")] == 4
+    assert lines[("drive", "shafts", 1, "inertia")] == 9
+    assert lines[("drive", "shafts", 1, "inertia", "x")] == 10
+    assert lines[("drive", "shafts", 1, "pieces", 0, "y")] == 12
+    assert lines[("drive", "shafts", 1, "pieces", 1, "y")] == 14
+    assert ("drive", "shafts", "inertia") not in lines
+
+
 def test_write_toml_atomic_never_overwrites(tmp_path: Path):
     path = tmp_path / "x.toml"
     write_toml_atomic(path, {"a": 1})

@@ -484,8 +484,19 @@ def _split_key(key: str) -> tuple[str, ...]:
 def _key_lines(text: str) -> dict[tuple[str | int, ...], int]:
     """Map each table and key path to its first line (arrays of tables indexed)."""
     lines: dict[tuple[str | int, ...], int] = {}
-    counts: dict[tuple[str, ...], int] = {}
+    counts: dict[tuple[str | int, ...], int] = {}  # arrays of tables: their items so far
     current: tuple[str | int, ...] = ()
+
+    def resolve(name: tuple[str, ...]) -> tuple[str | int, ...]:
+        """A header's path, each array of tables on the way at its last item
+        ([a.b] after [[a]] is a table of a's last item)."""
+        out: tuple[str | int, ...] = ()
+        for part in name:
+            out = (*out, part)
+            if out in counts:
+                out = (*out, counts[out] - 1)
+        return out
+
     for number, line in enumerate(text.splitlines(), start=1):
         stripped = line.strip()
         if not stripped or stripped.startswith("#"):
@@ -494,12 +505,13 @@ def _key_lines(text: str) -> dict[tuple[str | int, ...], int]:
         if header and "=" not in header.group(2):
             name = _split_key(header.group(2))
             if header.group(1) == "[[":
-                index = counts.get(name, 0)
-                counts[name] = index + 1
-                current = (*name, index)
-                lines.setdefault(name, number)
+                array = (*resolve(name[:-1]), name[-1])
+                index = counts.get(array, 0)
+                counts[array] = index + 1
+                current = (*array, index)
+                lines.setdefault(array, number)
             else:
-                current = name
+                current = resolve(name)
             lines.setdefault(current, number)
             continue
         key = _KEY.match(line)
