@@ -191,7 +191,16 @@ def maxima(
         with np.errstate(all="ignore"):
             step_to = xi - g / bend
         fine = (bend < 0.0) & (step_to >= lo) & (step_to <= hi)  # (at the root: stays)
-        xi = np.where(fine, step_to, 0.5 * (lo + hi))
+        moved = np.where(fine, step_to, 0.5 * (lo + hi))
+        # a candidate whose step left it where it was stays there for good (the
+        # same slope, the same bracket): it leaves the loop with its time
+        still = moved == xi
+        x[inside[still]] = xi[still]
+        keep = ~still
+        inside, lo, hi, xi = inside[keep], lo[keep], hi[keep], moved[keep]
+        bi, wi = bi[keep], wi[keep]
+        if not inside.size:
+            break
     x[inside] = xi
     # Every sum's candidates in time order, then its window's two ends: the first
     # largest value wins.
@@ -204,8 +213,7 @@ def maxima(
         constant[point_rows, point_sums], b_slow[point_rows, point_sums], w[point_rows], points
     )
     owner = point_rows * series + point_sums
-    choice = np.lexsort((np.arange(len(points)), -values, owner))
-    heads = choice[np.searchsorted(owner[choice], np.arange(rows * series))]
+    heads = _first_largest(owner, values, rows * series)
     best_value = values[heads].reshape(rows, series)
     best_time = points[heads].reshape(rows, series)
     fast_amplitude = np.zeros((rows, series))
@@ -220,6 +228,21 @@ def maxima(
     with np.errstate(all="ignore"):
         error = np.where(single, 0.5 * curvature * (math.pi / w_fast) ** 2, 0.0)
     return Maxima(np.where(bound, best_value + fast_amplitude, best_value), best_time, bound, error)
+
+
+def _first_largest(owner: np.ndarray, values: np.ndarray, owners: int) -> np.ndarray:
+    """For each owner 0 … owners - 1 (each owns a point), the index of its largest
+    value, the first of equals; NaN counts below every number (an owner of NaN
+    alone: its first point). Two scatters, not a sort."""
+    best = np.full(owners, -np.inf)
+    np.fmax.at(best, owner, values)
+    top = values == best[owner]
+    none = len(values)
+    heads = np.full(owners, none)
+    np.minimum.at(heads, owner[top], np.flatnonzero(top))
+    first = np.full(owners, none)
+    np.minimum.at(first, owner, np.arange(none))
+    return np.where(heads == none, first, heads)
 
 
 def _slopes(b: np.ndarray, w: np.ndarray, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
