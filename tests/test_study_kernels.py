@@ -361,3 +361,5 @@ def test_acceleration_kernel_draws_a_torque_table_and_its_rev_limit(monkeypatch)
             if isinstance(q.value, int | float) and not isinstance(q.value, bool):
                 rel, tol = tolerance(module, key, 1e-9)
                 assert answer[key][i] == pytest.approx(float(q.value), rel=rel, abs=tol), (key, i)
+        # the table's peak by the float path's formula: the same bits
+        assert answer["peak_torque"][i] == report.results()["peak_torque"].value

@@ -291,3 +291,21 @@ def test_a_chain_kernel_in_tiles_gives_each_row_its_own_numbers(monkeypatch):
     assert tiled[DECLINED].tolist() == [k == 990 for k in range(1000)]
     for key, values in whole.items():
         assert np.array_equal(values, tiled[key], equal_nan=True), key
+
+
+def test_tiles_whose_keys_differ_leave_the_block_whole():
+    # in_tiles joins tiles only where each gives the same keys: else None, and the
+    # kernel computes the block whole (a later tile without a key raised KeyError)
+    from mdcalc.input.model import in_tiles
+
+    def kernel(case, grid, wanted):
+        x = np.asarray(grid["x"])
+        out = {"double": 2.0 * x}
+        if x[0] >= 10:  # a tile with a key the first has not
+            out["extra"] = x
+        return out
+
+    whole = in_tiles(kernel, None, {"x": np.arange(12.0), "y": 3.0}, None, 4)
+    assert whole is not None and whole["double"].tolist() == [2.0 * k for k in range(12)]
+    assert in_tiles(kernel, None, {"x": np.arange(14.0)}, None, 5) is None
+    assert in_tiles(kernel, None, {"x": np.arange(8.0)}, None, 4) is None  # two tiles: whole

@@ -222,7 +222,7 @@ def _polish(j: np.ndarray, c: np.ndarray, guesses: np.ndarray) -> np.ndarray:
             a = np.maximum(g - width, low_limit)
             b = np.minimum(g + width, high_limit)
             f_a, f_b = residual(a), residual(b)
-            found = searching & (a > 0.0) & (f_a * f_b <= 0.0)
+            found = searching & (a > 0.0) & _straddle(f_a, f_b)
             low, f_low = np.where(found, a, low), np.where(found, f_a, f_low)
             high, f_high = np.where(found, b, high), np.where(found, f_b, f_high)
             bracketed |= found
@@ -235,20 +235,35 @@ def _polish(j: np.ndarray, c: np.ndarray, guesses: np.ndarray) -> np.ndarray:
         ulps = 4.0 * np.spacing(secant)
         a, b = np.maximum(secant - ulps, low), np.minimum(secant + ulps, high)
         f_a, f_b = residual(a), residual(b)
-        tight = bracketed & (f_a * f_b <= 0.0)
+        tight = bracketed & _straddle(f_a, f_b)
         low, f_low = np.where(tight, a, low), np.where(tight, f_a, f_low)
-        high = np.where(tight, b, high)
-        return np.where(bracketed, _bisect(residual, low, high, f_low, bracketed), g)
+        high, f_high = np.where(tight, b, high), np.where(tight, f_b, f_high)
+        roots = _bisect(residual, low, high, f_low, f_high, bracketed)
+        return np.where(bracketed, roots, g)
+
+
+def _straddle(f_a: np.ndarray, f_b: np.ndarray) -> np.ndarray:
+    """The function changes sign between a and b, or is zero at one of them (by the
+    signs: a product of two values below 1e-154 would underflow to zero)."""
+    return (f_a == 0.0) | (f_b == 0.0) | ((f_a < 0.0) != (f_b < 0.0))
 
 
 def _bisect(
-    function: Any, low: np.ndarray, high: np.ndarray, f_low: np.ndarray, active: np.ndarray
+    function: Any,
+    low: np.ndarray,
+    high: np.ndarray,
+    f_low: np.ndarray,
+    f_high: np.ndarray,
+    active: np.ndarray,
 ) -> np.ndarray:
     """Bisection of each bracket [low, high] where ``active``, to the last bit
-    (``f_low``: the function at ``low``)."""
-    root = np.zeros_like(low)
-    exact = np.zeros(low.shape, dtype=bool)
-    running = active.copy()
+    (``f_low``, ``f_high``: the function at its ends; an end where it is exactly
+    zero is the root)."""
+    at_low = active & (f_low == 0.0)
+    at_high = active & ~at_low & (f_high == 0.0)
+    root = np.where(at_low, low, np.where(at_high, high, 0.0))
+    exact = at_low | at_high
+    running = active & ~exact
     for _ in range(200):
         middle = 0.5 * (low + high)
         running &= (middle != low) & (middle != high)

@@ -135,7 +135,8 @@ def in_tiles(
     sweep: Any, case: Any, grid: dict[str, Any], wanted: Any, rows: int
 ) -> dict[str, Any] | None:
     """A kernel's answer over a block computed ``rows`` samples at a time (None where
-    the block holds at most two tiles, or a tile's answer is None): a kernel of many
+    the block holds at most two tiles, a tile's answer is None or the tiles' keys
+    differ: the caller then computes the block whole): a kernel of many
     small arrays a row (a modal solution's tables) runs faster where they stay in the
     processor's cache. Each row's numbers are its own, so the answer is the same."""
     import numpy as np
@@ -143,12 +144,12 @@ def in_tiles(
     size = max([np.size(v) for v in grid.values()] + [1])
     if size <= 2 * rows:
         return None
-    parts = []
+    parts: list[dict[str, Any]] = []
     for first in range(0, size, rows):
         tile = {k: v if np.size(v) == 1 else v[first : first + rows] for k, v in grid.items()}
         part = sweep(case, tile, wanted)
-        if part is None:
-            return None
+        if part is None or (parts and set(part) != set(parts[0])):
+            return None  # (tiles that give different keys: the block whole, as asked)
         parts.append(part)
     return {key: np.concatenate([p[key] for p in parts]) for key in parts[0]}
 

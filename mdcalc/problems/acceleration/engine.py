@@ -52,12 +52,15 @@ class EngineCurve:
     def torque(self, omega: Any) -> Any:
         """M_e(ω) [N·m]; a table is interpolated linearly and held at its ends.
         ``omega`` (and the rated torque, or a table's torques) may be numpy arrays
-        over a block of scenes, ``omega`` with more axes after the block's."""
+        over a block of scenes (rows on ``omega``'s last axis)."""
         if self.is_table and self.rows:
             return self._table_rows(omega)
         if self.is_table and not isinstance(omega, float | int):
             import numpy as np
 
+            # one C call: 2x the kernel's rate where a fixed table drives its ODE
+            # runs; it rounds otherwise than the float path (an ulp, well within
+            # the reference's tolerance)
             return np.interp(omega, self.speeds, self.torques)
         if self.is_table:
             s, m = self.speeds, self.torques
@@ -73,9 +76,10 @@ class EngineCurve:
         return self.rated_torque * (a + b * x - c * x * x)  # (7.37) read as Leiderman's
 
     def _table_rows(self, omega: Any) -> Any:
-        """The table's interpolation, each row with its own torques (arrays over the
-        block of B rows, which sit on ``omega``'s last axis as numpy broadcasts
-        them): the float path's formula, M[k-1] + w·(M[k] - M[k-1]), elementwise."""
+        """The table's interpolation over an array of speeds, each row with its own
+        torques where they are arrays over the block of B rows (on ``omega``'s last
+        axis, as numpy broadcasts them): the float path's formula,
+        M[k-1] + w·(M[k] - M[k-1]), elementwise."""
         import numpy as np
 
         size, count = max(np.size(m) for m in self.torques), len(self.torques)
@@ -115,7 +119,7 @@ class EngineCurve:
         speeds = np.broadcast_to(np.asarray(self.speeds)[:, None], (len(self.speeds), size))
         speeds = np.where(speeds <= limit[None, :], speeds, np.nan)  # past the limit: none
         candidates = np.sort(np.concatenate([speeds, grid], axis=0), axis=0)  # (C, rows)
-        score = self._table_rows(candidates)  # the float path's formula, not np.interp
+        score = self._table_rows(candidates)
         score = score * candidates if power else score
         best = np.argmax(np.where(np.isnan(candidates), -np.inf, score), axis=0)
         return candidates[best, np.arange(size)]
@@ -124,7 +128,7 @@ class EngineCurve:
         """(ω, M) at the maximum torque on [low, limit]."""
         if self.is_table and (self.rows or not isinstance(limit, float | int)):
             omega = self._best_rows(limit, power=False)
-            return omega, self.torque(omega)
+            return omega, self._table_rows(omega)  # the float path's value, to the bit
         if self.is_table:
             omega = max(self._candidates(limit), key=self.torque)
             return omega, self.torque(omega)
