@@ -61,6 +61,31 @@ y = 2
     assert ("drive", "shafts", "inertia") not in lines
 
 
+def test_key_lines_skip_the_lines_of_a_multi_line_array_or_string():
+    # "  [2.0, 0.3]" inside points = [...] is no table header, nor "[x]" inside a
+    # multi-line string (found by review: keys after such an array got no line)
+    text = """[mathieu]
+points = [
+  [1.0, 0.5],   # a [comment
+  [2.0, 0.3]
+]
+damping = 0.1
+title = \"\"\"a
+[not.a.table]
+\"\"\"
+x = 'a[b'
+[next]
+y = 1
+"""
+    lines = _key_lines(text)
+    assert lines[("mathieu", "points")] == 2
+    assert lines[("mathieu", "damping")] == 6
+    assert lines[("mathieu", "title")] == 7
+    assert lines[("mathieu", "x")] == 10
+    assert lines[("next", "y")] == 12
+    assert not any("not" in key or "2.0, 0.3" in key for key in lines)
+
+
 def test_write_toml_atomic_never_overwrites(tmp_path: Path):
     path = tmp_path / "x.toml"
     write_toml_atomic(path, {"a": 1})

@@ -497,7 +497,16 @@ def _key_lines(text: str) -> dict[tuple[str | int, ...], int]:
                 out = (*out, counts[out] - 1)
         return out
 
+    depth = 0  # brackets a multi-line array value leaves open: its lines are no keys
+    quote: str | None = None  # the multi-line string a value leaves open
     for number, line in enumerate(text.splitlines(), start=1):
+        if quote is not None:
+            if line.count(quote) % 2:
+                quote = None
+            continue
+        if depth > 0:
+            depth = max(0, depth + _depth_change(line))
+            continue
         stripped = line.strip()
         if not stripped or stripped.startswith("#"):
             continue
@@ -517,7 +526,23 @@ def _key_lines(text: str) -> dict[tuple[str | int, ...], int]:
         key = _KEY.match(line)
         if key:
             lines.setdefault((*current, *_split_key(key.group(1))), number)
+            value = line[key.end() :]
+            for mark in ('"""', "'''"):
+                if value.count(mark) % 2:
+                    quote = mark
+            if quote is None:
+                depth = max(0, _depth_change(value))
     return lines
+
+
+_STRING = re.compile(r"\"(?:[^\"\\]|\\.)*\"|'[^']*'")
+
+
+def _depth_change(code: str) -> int:
+    """Brackets a line of a value opens minus those it closes (strings and a
+    comment left out)."""
+    code = _STRING.sub('""', code).split("#", 1)[0]
+    return code.count("[") + code.count("{") - code.count("]") - code.count("}")
 
 
 # ------------------------------------------------------------ keys of case data
