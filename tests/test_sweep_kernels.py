@@ -309,3 +309,26 @@ def test_tiles_whose_keys_differ_leave_the_block_whole():
     assert whole is not None and whole["double"].tolist() == [2.0 * k for k in range(12)]
     assert in_tiles(kernel, None, {"x": np.arange(14.0)}, None, 5) is None
     assert in_tiles(kernel, None, {"x": np.arange(8.0)}, None, 4) is None  # two tiles: whole
+
+
+def test_a_variator_drive_kernel_in_tiles_gives_each_row_its_own_numbers(monkeypatch):
+    # where each sample has its own drive, the variator's kernel solves TILE_ROWS
+    # samples a call: the numbers of the block computed whole, bit for bit
+    import tomllib
+
+    from mdcalc.input.casefile import CaseText, validate
+    from mdcalc.problems.variator import kernel
+
+    module = PROBLEMS["variator"].load()
+    path = CASES / "variator" / "vk_variator.toml"
+    data = tomllib.loads(path.read_text(encoding="utf-8"))
+    data.pop("expect", None)
+    case = validate(module.Case, CaseText(path, "", data))
+    inertia = data["drive"]["driven_inertia"]
+    grid = {"drive.driven_inertia": inertia * np.random.default_rng(5).uniform(0.8, 1.2, 300)}
+    whole = kernel.sweep(case, grid)
+    monkeypatch.setattr(kernel, "TILE_ROWS", 64)
+    tiled = kernel.sweep(case, grid)
+    assert whole is not None and tiled is not None and list(tiled) == list(whole)
+    for key, values in whole.items():
+        assert np.array_equal(values, tiled[key], equal_nan=True), key

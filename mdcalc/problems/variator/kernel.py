@@ -10,7 +10,7 @@ from __future__ import annotations
 from collections.abc import Collection
 from typing import Any
 
-from mdcalc.input.model import kernel_answer, value_at, with_values
+from mdcalc.input.model import in_tiles, kernel_answer, value_at, with_values
 from mdcalc.problems.variator.case import Case
 
 #: Keys ``mdcalc sweep`` and ``mdcalc study`` may vary in the vectorized form.
@@ -65,6 +65,9 @@ SWEEP_KEYS = {
 
 #: The keys the drive's periodic states depend on (ψ of [clutch] gives its damping).
 DRIVE_INPUTS = ("drive.", "mechanism.", "antiresonance.", "clutch.loop_area_ratio")
+#: Samples a call solves at once where each has its own drive: the periodic states'
+#: arrays stay in the cache (4096 rows of vk_variator: 1.4x the rate of 65 536).
+TILE_ROWS = 4096
 
 
 def sweep(
@@ -80,6 +83,10 @@ def sweep(
 
     if any(key not in SWEEP_KEYS or value_at(case, key) is None for key in grid):
         return None
+    if case.drive is not None and any(key.startswith(DRIVE_INPUTS) for key in grid):
+        tiles = in_tiles(sweep, case, grid, wanted, TILE_ROWS)
+        if tiles is not None:
+            return tiles
     arrays = with_values(case, {key: np.asarray(v, dtype=float) for key, v in grid.items()})
     size = max([np.size(v) for v in grid.values()] + [1])
 
