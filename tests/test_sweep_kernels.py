@@ -260,22 +260,35 @@ def test_value_at_finds_a_number_or_says_none():
         assert value_at(case, "lecture.traction_coefficient") is None
 
 
+def _tiled_and_whole(monkeypatch, problem: str, case: str, grid: dict, tile: int):
+    """A kernel's answer over ``grid`` computed whole and in tiles of ``tile`` rows."""
+    import importlib
+    import tomllib
+
+    from mdcalc.input.casefile import CaseText, validate
+
+    module = PROBLEMS[problem].load()
+    kernel = importlib.import_module(f"mdcalc.problems.{problem}.kernel")
+    path = CASES / problem / case
+    data = tomllib.loads(path.read_text(encoding="utf-8"))
+    data.pop("expect", None)
+    model = validate(module.Case, CaseText(path, "", data))
+    whole = kernel.sweep(model, grid)
+    monkeypatch.setattr(kernel, "TILE_ROWS", tile)
+    tiled = kernel.sweep(model, grid)
+    assert whole is not None and tiled is not None and list(tiled) == list(whole)
+    for key, values in whole.items():
+        assert np.array_equal(values, tiled[key], equal_nan=True), key
+    return tiled
+
+
 def test_a_chain_kernel_in_tiles_gives_each_row_its_own_numbers(monkeypatch):
     # resonance's modal solution runs TILE_ROWS chains a call (its arrays stay in
     # the cache): a block of more tiles than one, with a declined row (no damping
     # moves in mode 2 where the cranks' damping is zero) in its last tile, gives the
     # numbers of the block computed whole, bit for bit.
-    import tomllib
-
-    from mdcalc.input.casefile import CaseText, validate
     from mdcalc.input.model import DECLINED
-    from mdcalc.problems.resonance import kernel
 
-    module = PROBLEMS["resonance"].load()
-    path = CASES / "resonance" / "inline_six.toml"
-    data = tomllib.loads(path.read_text(encoding="utf-8"))
-    data.pop("expect", None)
-    case = validate(module.Case, CaseText(path, "", data))
     rng = np.random.default_rng(3)
     grid = {
         "chain.stiffnesses.6": 2.0e4 * rng.uniform(0.8, 1.2, 1000),
@@ -284,13 +297,8 @@ def test_a_chain_kernel_in_tiles_gives_each_row_its_own_numbers(monkeypatch):
     }
     for k in range(1, 6):
         grid[f"chain.damping.{k}"] = grid["chain.damping.0"]
-    whole = kernel.sweep(case, grid)
-    monkeypatch.setattr(kernel, "TILE_ROWS", 128)
-    tiled = kernel.sweep(case, grid)
-    assert whole is not None and tiled is not None and list(tiled) == list(whole)
+    tiled = _tiled_and_whole(monkeypatch, "resonance", "inline_six.toml", grid, 128)
     assert tiled[DECLINED].tolist() == [k == 990 for k in range(1000)]
-    for key, values in whole.items():
-        assert np.array_equal(values, tiled[key], equal_nan=True), key
 
 
 def test_tiles_whose_keys_differ_leave_the_block_whole():
@@ -314,21 +322,6 @@ def test_tiles_whose_keys_differ_leave_the_block_whole():
 def test_a_variator_drive_kernel_in_tiles_gives_each_row_its_own_numbers(monkeypatch):
     # where each sample has its own drive, the variator's kernel solves TILE_ROWS
     # samples a call: the numbers of the block computed whole, bit for bit
-    import tomllib
-
-    from mdcalc.input.casefile import CaseText, validate
-    from mdcalc.problems.variator import kernel
-
-    module = PROBLEMS["variator"].load()
-    path = CASES / "variator" / "vk_variator.toml"
-    data = tomllib.loads(path.read_text(encoding="utf-8"))
-    data.pop("expect", None)
-    case = validate(module.Case, CaseText(path, "", data))
-    inertia = data["drive"]["driven_inertia"]
-    grid = {"drive.driven_inertia": inertia * np.random.default_rng(5).uniform(0.8, 1.2, 300)}
-    whole = kernel.sweep(case, grid)
-    monkeypatch.setattr(kernel, "TILE_ROWS", 64)
-    tiled = kernel.sweep(case, grid)
-    assert whole is not None and tiled is not None and list(tiled) == list(whole)
-    for key, values in whole.items():
-        assert np.array_equal(values, tiled[key], equal_nan=True), key
+    inertia = 0.05 * np.random.default_rng(5).uniform(0.8, 1.2, 300)
+    grid = {"drive.driven_inertia": inertia}
+    _tiled_and_whole(monkeypatch, "variator", "vk_variator.toml", grid, 64)
