@@ -325,3 +325,22 @@ def test_a_variator_drive_kernel_in_tiles_gives_each_row_its_own_numbers(monkeyp
     inertia = 0.05 * np.random.default_rng(5).uniform(0.8, 1.2, 300)
     grid = {"drive.driven_inertia": inertia}
     _tiled_and_whole(monkeypatch, "variator", "vk_variator.toml", grid, 64)
+
+
+@pytest.mark.parametrize(
+    ("problem", "case", "key"),
+    [
+        ("acceleration", "lecture.toml", "vehicle.mass"),
+        ("mechanism", "crank_press.toml", "parameters.Mr"),  # a kink each revolution
+    ],
+)
+def test_an_ode_kernel_in_tiles_gives_each_row_its_own_numbers(monkeypatch, problem, case, key):
+    # the ODE references step every row with its own error control: tiles of 16
+    # rows give the block's numbers, bit for bit
+    import tomllib
+
+    data = tomllib.loads((CASES / problem / case).read_text(encoding="utf-8"))
+    value = _held(data, key)
+    assert value is not None
+    column = value * np.random.default_rng(6).uniform(0.9, 1.0, 40)
+    _tiled_and_whole(monkeypatch, problem, case, {key: column}, 16)

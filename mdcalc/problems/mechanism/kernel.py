@@ -80,9 +80,12 @@ SAMPLES_A_STEP = 8
 #: Golden-section iterations of an extreme, as the single scene's.
 GOLDEN_ITERATIONS = 60
 
-#: Kovylin's nodes × rows of a block at most (a node array of 32 MB): a block of more
-#: rows runs in parts.
+#: Kovylin's nodes × rows of a block at most (a node array of 32 MB), and rows at
+#: most (the reference's arrays stay in the cache: 16 384 rows of
+#: mechanism_inertia.toml run at 1.3x the rate of 65 536): a block of more rows runs
+#: in parts.
 NODE_CELLS = 4_000_000
+TILE_ROWS = 16_384
 
 FLUCTUATION_KEYS = ("max_speed", "min_speed", "mean_speed_revolution", "fluctuation")
 KOVYLIN_KEYS = ("kovylin_final_speed", "kovylin_worst_error")
@@ -212,8 +215,8 @@ def sweep(
     motion = c.motion
     kovylin = wanted is None or bool(set(wanted) & set(KOVYLIN_KEYS))
     nodes = np.max(np.ceil(np.asarray(motion.revolutions * motion.steps_per_revolution))) + 1
-    rows = max(1, int(NODE_CELLS // nodes)) if kovylin else size
-    if size > rows:  # Kovylin's nodes × rows in parts that fit in memory; rows are independent
+    rows = min(max(1, int(NODE_CELLS // nodes)) if kovylin else size, TILE_ROWS)
+    if size > rows:  # in parts that fit in memory and the cache; rows are independent
         parts = [
             sweep(
                 case,
