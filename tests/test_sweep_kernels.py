@@ -316,7 +316,7 @@ def test_tiles_whose_keys_differ_leave_the_block_whole():
     whole = in_tiles(kernel, None, {"x": np.arange(12.0), "y": 3.0}, None, 4)
     assert whole is not None and whole["double"].tolist() == [2.0 * k for k in range(12)]
     assert in_tiles(kernel, None, {"x": np.arange(14.0)}, None, 5) is None
-    assert in_tiles(kernel, None, {"x": np.arange(8.0)}, None, 4) is None  # two tiles: whole
+    assert in_tiles(kernel, None, {"x": np.arange(4.0)}, None, 4) is None  # one tile: whole
 
 
 def test_a_variator_drive_kernel_in_tiles_gives_each_row_its_own_numbers(monkeypatch):

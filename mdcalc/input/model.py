@@ -135,14 +135,15 @@ def in_tiles(
     sweep: Any, case: Any, grid: dict[str, Any], wanted: Any, rows: int
 ) -> dict[str, Any] | None:
     """A kernel's answer over a block computed ``rows`` samples at a time (None where
-    the block holds at most two tiles, a tile's answer is None or the tiles' keys
-    differ: the caller then computes the block whole): a kernel of many
-    small arrays a row (a modal solution's tables) runs faster where they stay in the
-    processor's cache. Each row's numbers are its own, so the answer is the same."""
+    the block holds no more than one tile, a tile's answer is None or the tiles' keys
+    differ: the caller then decides): a kernel of many small arrays a row (a modal
+    solution's tables, an ODE reference's stages) runs faster where they stay in the
+    processor's cache, and one with a large array a row fits in memory. Each row's
+    numbers are its own, so the answer is the same."""
     import numpy as np
 
     size = max([np.size(v) for v in grid.values()] + [1])
-    if size <= 2 * rows:
+    if size <= rows:
         return None
     parts: list[dict[str, Any]] = []
     for first in range(0, size, rows):

@@ -26,7 +26,7 @@ from typing import Any
 
 from mdcalc.core.units import rpm_to_rad_s
 from mdcalc.input.expr import parse
-from mdcalc.input.model import kernel_answer, value_at, with_values
+from mdcalc.input.model import in_tiles, kernel_answer, value_at, with_values
 from mdcalc.problems.mechanism.case import TWO_PI, VARIABLES, Case
 from mdcalc.problems.mechanism.kovylin import MAX_REFINEMENT, kovylin_step
 from mdcalc.problems.mechanism.scene import (
@@ -217,18 +217,7 @@ def sweep(
     nodes = np.max(np.ceil(np.asarray(motion.revolutions * motion.steps_per_revolution))) + 1
     rows = min(max(1, int(NODE_CELLS // nodes)) if kovylin else size, TILE_ROWS)
     if size > rows:  # in parts that fit in memory and the cache; rows are independent
-        parts = [
-            sweep(
-                case,
-                {k: np.broadcast_to(v, (size,))[i : i + rows] for k, v in grid.items()},
-                wanted,
-            )
-            for i in range(0, size, rows)
-        ]
-        done = [part for part in parts if part is not None]
-        if len(done) < len(parts):
-            return None
-        return {k: np.concatenate([part[k] for part in done]) for k in done[0]}
+        return in_tiles(sweep, case, grid, wanted, rows)
 
     def spread(value: Any) -> Any:
         return np.array(np.broadcast_to(np.asarray(value, dtype=float), (size,)))
