@@ -193,7 +193,7 @@ def test_inputs_as_written_and_as_computed_with(cli, tmp_path):
     assert inputs[0] == ["key", "as written", "as computed with", "unit"]
     rows = {row[0]: row for row in inputs[1:]}
     # As the case file writes them, and in the field's unit (4000 g·m² is 4 kg·m²).
-    assert rows["coupling.driven_inertia"][1:] == ["4000 g*m**2", "4", "kg·m^2"]
+    assert rows["coupling.driven_inertia"][1:] == ["4000 g*m**2", "4", "kg·m²"]
     assert rows["coupling.absorption"][1:] == ["0.63", "0.63", ""]
     # 52.5 N*m/deg in N·m/rad: 52.5 · 180/π (the case file's stiffness).
     stiffness = [r for k, r in rows.items() if "deg" in r[1]]
@@ -402,5 +402,5 @@ def test_values_left_to_their_defaults_are_listed_as_such(cli, tmp_path):
     text, _ = _report(cli, tmp_path, LECTURE, ".md")
     rows = {row[0]: row[1:] for row in markdown_tables(text)[1][1:]}
     assert rows["vehicle.mass"] == ["1500.0", "1500.0", "kg"]  # written
-    assert rows["gravity"] == ["(default)", "9.80665", "m/s^2"]  # standard gravity
+    assert rows["gravity"] == ["(default)", "9.80665", "m/s²"]  # standard gravity
     assert "driver.reaction_time" not in rows  # a section the case leaves out

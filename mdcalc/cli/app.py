@@ -459,6 +459,34 @@ def new_command(
     raise typer.Exit(guard(body, debug))
 
 
+@app.command("schema")
+def schema_command(
+    problem: Annotated[
+        str, typer.Argument(help=f"One of: {', '.join(PROBLEMS)}.", autocompletion=complete_problem)
+    ],
+    output: Annotated[
+        Path | None,
+        typer.Option("-o", "--output", help="Write to this file, not stdout.", metavar="FILE"),
+    ] = None,
+    keys: Annotated[
+        bool,
+        typer.Option(
+            "--keys", help="Print the keys as a table: key, unit, default, allowed, description."
+        ),
+    ] = False,
+    force: Annotated[bool, typer.Option("--force", help="Overwrite an existing file.")] = False,
+    debug: DebugOption = False,
+) -> None:
+    """Write the JSON Schema of PROBLEM's case files (for an editor), or list its keys."""
+
+    def body() -> int:
+        from mdcalc.cli.schema import run_schema
+
+        return run_schema(problem, output, keys, force)
+
+    raise typer.Exit(guard(body, debug))
+
+
 def _version(value: bool) -> None:
     if value:
         print(f"mdcalc {__version__}")

@@ -18,8 +18,8 @@ SurfaceName = Literal[
 
 class Drag(CaseModel):
     drag_coefficient: float = Field(gt=0, le=3, description="Drag coefficient C_x [-]")
-    frontal_area: float = Field(gt=0, le=100, description="Frontal area A [m^2]")
-    air_density: float = Field(default=1.225, gt=0, le=5, description="Air density rho [kg/m^3]")
+    frontal_area: float = Field(gt=0, le=100, description="Frontal area A [m²]")
+    air_density: float = Field(default=1.225, gt=0, le=5, description="Air density rho [kg/m³]")
 
     @property
     def factor(self) -> float:

@@ -110,11 +110,15 @@ def _import_pint() -> Any:
     return pint
 
 
+#: The powers a field description writes as a person reads them (kg·m², m/s³).
+_SUPERSCRIPTS = str.maketrans({"²": "**2", "³": "**3", "⁴": "**4", "·": "*", "^": "**"})
+
+
 def field_unit(unit: str) -> str:
-    """A field description's unit (``N·m/rad``, ``kg·m^2``, ``-``) in pint's syntax."""
+    """A field description's unit (``N·m/rad``, ``kg·m²``, ``-``) in pint's syntax."""
     if unit in ("", "-"):
         return "dimensionless"
-    return unit.replace("·", "*").replace("^", "**")
+    return unit.translate(_SUPERSCRIPTS)
 
 
 def convert(text: str, unit: str) -> float:

@@ -68,7 +68,7 @@ class Brakes(CaseModel):
 
     force: float | None = Field(default=None, gt=0, description="Brake force at the tyres [N]")
     deceleration: float | None = Field(
-        default=None, gt=0, description="Demanded deceleration from the brakes [m/s^2]"
+        default=None, gt=0, description="Demanded deceleration from the brakes [m/s²]"
     )
     traction_force: float | None = Field(
         default=None, gt=0, description="P_D, top-gear traction force (7.35) [N]"
@@ -135,7 +135,7 @@ class Driver(CaseModel):
 
 class Case(CaseBase):
     problem: Literal["braking"] = Field(description="Problem name [-]")
-    gravity: float = Field(default=STANDARD_GRAVITY, gt=0, description="Gravity g [m/s^2]")
+    gravity: float = Field(default=STANDARD_GRAVITY, gt=0, description="Gravity g [m/s²]")
     vehicle: Vehicle
     brakes: Brakes | None = None
     road: Road

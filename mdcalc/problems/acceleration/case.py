@@ -211,7 +211,7 @@ class Lecture(CaseModel):
     traction_coefficient: float | None = Field(
         default=None,
         gt=0,
-        description="A/m in (7.42), traction per unit gear ratio; lecture 1.1 [m/s^2]",
+        description="A/m in (7.42), traction per unit gear ratio; lecture 1.1 [m/s²]",
     )
     shift_angular_speed: float | None = Field(
         default=None, gt=0, description="ω_D in (7.40), engine speed ending each gear [rad/s]"
@@ -220,7 +220,7 @@ class Lecture(CaseModel):
 
 class Case(CaseBase):
     problem: Literal["acceleration"] = Field(description="Problem name [-]")
-    gravity: float = Field(default=STANDARD_GRAVITY, gt=0, description="Gravity g [m/s^2]")
+    gravity: float = Field(default=STANDARD_GRAVITY, gt=0, description="Gravity g [m/s²]")
     vehicle: Vehicle
     engine: Engine
     transmission: Transmission

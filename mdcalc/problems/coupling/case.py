@@ -15,8 +15,8 @@ DEG = math.pi / 180.0
 
 
 class Coupling(CaseModel):
-    driving_inertia: float = Field(gt=0, description="J₁, driving half with the motor [kg·m^2]")
-    driven_inertia: float = Field(gt=0, description="J₂, driven half with the machine [kg·m^2]")
+    driving_inertia: float = Field(gt=0, description="J₁, driving half with the motor [kg·m²]")
+    driven_inertia: float = Field(gt=0, description="J₂, driven half with the machine [kg·m²]")
     stiffness: float | None = Field(default=None, gt=0, description="c [N·m/rad]")
     stiffness_nm_per_deg: float | None = Field(
         default=None, gt=0, description="c, as catalogues give it [N·m/deg]"

@@ -20,7 +20,7 @@ class Load(CaseModel):
 
 class Shaft(CaseModel):
     name: str = Field(min_length=1, description="What turns on this shaft [-]")
-    inertia: float = Field(gt=0, description="Moment of inertia on the shaft [kg*m^2]")
+    inertia: float = Field(gt=0, description="Moment of inertia on the shaft [kg·m²]")
     speed_rpm: float | None = Field(default=None, gt=0, description="Shaft speed [rpm]")
     ratio: float | None = Field(
         default=None, gt=0, description="Gear ratio from the motor, omega_1/omega_k [-]"
@@ -43,7 +43,7 @@ class Shaft(CaseModel):
 class Drive(CaseModel):
     motor_speed_rpm: float = Field(gt=0, description="Motor speed, steady lifting [rpm]")
     motor_inertia: float = Field(
-        gt=0, description="J1: rotor, coupling and brake pulley on the motor shaft [kg*m^2]"
+        gt=0, description="J1: rotor, coupling and brake pulley on the motor shaft [kg·m²]"
     )
     stage_efficiencies: list[Efficiency] = Field(
         min_length=1, description="Efficiencies of the gear stages and the drum [-]"
@@ -63,13 +63,13 @@ class Drive(CaseModel):
 class Start(CaseModel):
     time: float | None = Field(default=None, gt=0, description="Start time t_p [s]")
     starting_torque: float | None = Field(
-        default=None, gt=0, description="Catalogue starting torque of the motor [N*m]"
+        default=None, gt=0, description="Catalogue starting torque of the motor [N·m]"
     )
     machine: Literal["crane", "lift"] = Field(
         default="crane", description="Machine type, for the allowable acceleration [-]"
     )
     allowable_acceleration: float | None = Field(
-        default=None, gt=0, description="Allowable load acceleration, overrides the table [m/s^2]"
+        default=None, gt=0, description="Allowable load acceleration, overrides the table [m/s²]"
     )
 
     @model_validator(mode="after")
@@ -86,7 +86,7 @@ class Rope(CaseModel):
     elastic_modulus: float | None = Field(
         default=None, gt=0, description="Rope modulus E, with area and length [Pa]"
     )
-    area: float | None = Field(default=None, gt=0, description="Metal area of one rope [m^2]")
+    area: float | None = Field(default=None, gt=0, description="Metal area of one rope [m²]")
     length: float | None = Field(default=None, gt=0, description="Length of one branch [m]")
     branches: int = Field(default=1, ge=1, le=64, description="Branches carrying the load [-]")
     drive_mass: float | None = Field(
@@ -116,7 +116,7 @@ class Rope(CaseModel):
 
 class Case(CaseBase):
     problem: Literal["hoist"] = Field(description="Problem name [-]")
-    gravity: float = Field(default=STANDARD_GRAVITY, gt=0, description="Gravity g [m/s^2]")
+    gravity: float = Field(default=STANDARD_GRAVITY, gt=0, description="Gravity g [m/s²]")
     load: Load
     drive: Drive
     start: Start

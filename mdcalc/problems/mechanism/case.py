@@ -120,9 +120,9 @@ class Torque(_Tabulated):
 
 
 class Inertia(_Tabulated):
-    value: float | None = Field(default=None, gt=0, le=1e12, description="Constant I [kg·m^2]")
-    formula: str | None = Field(default=None, description="I(phi), phi in [rad] [kg·m^2]")
-    values: list[float] | None = Field(default=None, description="I at the angles [kg·m^2]")
+    value: float | None = Field(default=None, gt=0, le=1e12, description="Constant I [kg·m²]")
+    formula: str | None = Field(default=None, description="I(phi), phi in [rad] [kg·m²]")
+    values: list[float] | None = Field(default=None, description="I at the angles [kg·m²]")
 
     @model_validator(mode="after")
     def _one(self) -> Inertia:
@@ -131,11 +131,11 @@ class Inertia(_Tabulated):
         exactly_one("inertia", value=self.value, formula=self.formula, table=self.table_angles())
         if self.table_angles() is not None:
             if self.values is None:
-                raise FieldError(("values",), "missing: the inertia at each angle [kg·m^2]")
+                raise FieldError(("values",), "missing: the inertia at each angle [kg·m²]")
             self._check_angles(len(self.values))
             for v in self.values:
                 if not 0.0 < v <= 1e12:
-                    raise FieldError(("values",), f"inertia {v:g} kg·m^2 is not in (0, 1e12]")
+                    raise FieldError(("values",), f"inertia {v:g} kg·m² is not in (0, 1e12]")
             self._check_closing(list(self.values))
         elif self.values is not None:
             raise FieldError(("values",), "values need angles or angles_deg")

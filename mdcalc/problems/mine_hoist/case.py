@@ -12,20 +12,20 @@ from mdcalc.input.model import CaseBase, CaseModel, FieldError
 
 class Hoist(CaseModel):
     drum_inertia: float = Field(
-        gt=0, description="J₁, motor rotor, reducer and drum, at the drum axis [kg·m^2]"
+        gt=0, description="J₁, motor rotor, reducer and drum, at the drum axis [kg·m²]"
     )
     sheave_inertia: float = Field(
         gt=0,
         description=(
             "J₂, head sheave reduced to the drum axis; its own inertia when "
-            "rope.sheave_radius is given [kg·m^2]"
+            "rope.sheave_radius is given [kg·m²]"
         ),
     )
     cage_inertia: float = Field(
         gt=0,
         description=(
             "J₃, cage with load reduced to the drum axis (m·R²), with the rope's share "
-            "unless a [rope] section adds it [kg·m^2]"
+            "unless a [rope] section adds it [kg·m²]"
         ),
     )
     chord_stiffness: float | None = Field(

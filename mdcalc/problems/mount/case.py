@@ -59,7 +59,7 @@ class Isolation(CaseModel):
 
 class Case(CaseBase):
     problem: Literal["mount"] = Field(description="Problem name [-]")
-    gravity: float = Field(default=STANDARD_GRAVITY, gt=0, description="Gravity g [m/s^2]")
+    gravity: float = Field(default=STANDARD_GRAVITY, gt=0, description="Gravity g [m/s²]")
     engine: Engine
     mounts: Mounts
     crank: Crank

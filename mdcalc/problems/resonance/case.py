@@ -15,7 +15,7 @@ MAX_MASSES = 60
 
 
 class ChainSection(CaseModel):
-    inertias: list[float] = Field(description="J₁ … Jₙ [kg·m^2]")
+    inertias: list[float] = Field(description="J₁ … Jₙ [kg·m²]")
     stiffnesses: list[float] = Field(description="c₁ … cₙ₋₁, shaft k joins masses k, k+1 [N·m/rad]")
     damping: list[float] | None = Field(
         default=None, description="ξ₁ … ξₙ, viscous damping of each mass [N·m·s/rad]"
@@ -35,7 +35,7 @@ class ChainSection(CaseModel):
             raise FieldError(("inertias",), f"{n} masses; a chain has 2 to {MAX_MASSES}")
         for k, j in enumerate(self.inertias):
             if not 0.0 < j <= 1e9:
-                raise FieldError(("inertias", k), f"{j:g} kg·m^2 is not in (0, 1e9]")
+                raise FieldError(("inertias", k), f"{j:g} kg·m² is not in (0, 1e9]")
         if len(self.stiffnesses) != n - 1:
             raise FieldError(
                 ("stiffnesses",), f"{len(self.stiffnesses)} shafts for {n} masses; give {n - 1}"

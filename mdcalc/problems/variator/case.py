@@ -19,9 +19,9 @@ RAD_S_TO_RPM = 30.0 / math.pi
 
 
 class Absorber(CaseModel):
-    inertia: float = Field(ge=1e-9, le=1e9, description="J₁, the disk that is shaken [kg·m^2]")
+    inertia: float = Field(ge=1e-9, le=1e9, description="J₁, the disk that is shaken [kg·m²]")
     stiffness: float = Field(ge=1e-6, le=1e15, description="c, its shaft to the ground [N·m/rad]")
-    absorber_inertia: float = Field(ge=1e-9, le=1e9, description="J₂, the absorber disk [kg·m^2]")
+    absorber_inertia: float = Field(ge=1e-9, le=1e9, description="J₂, the absorber disk [kg·m²]")
     absorber_stiffness: float | None = Field(
         default=None,
         ge=1e-6,
@@ -79,10 +79,10 @@ class Motor(CaseModel):
 
 class Clutch(CaseModel):
     loading_coefficient: float | None = Field(
-        default=None, ge=1e-6, le=1e15, description="c₀ of M = c₀·ξⁿ [N·m/rad^n]"
+        default=None, ge=1e-6, le=1e15, description="c₀ of M = c₀·ξⁿ [N·m/radⁿ]"
     )
     loading_coefficient_kgfm: float | None = Field(
-        default=None, ge=1e-6, le=1e15, description="c₀ as the seed gives it [kgf·m/rad^n]"
+        default=None, ge=1e-6, le=1e15, description="c₀ as the seed gives it [kgf·m/radⁿ]"
     )
     loading_exponent: float = Field(ge=0.5, le=10, description="n of M = c₀·ξⁿ [-]")
     load_min: float = Field(default=0.0, ge=0, le=1e12, description="working range from [N·m]")
@@ -149,7 +149,7 @@ class Mechanism(CaseModel):
 
 
 class Drive(CaseModel):
-    driven_inertia: float = Field(ge=1e-9, le=1e9, description="J₂, on the output shaft [kg·m^2]")
+    driven_inertia: float = Field(ge=1e-9, le=1e9, description="J₂, on the output shaft [kg·m²]")
     load_torque: float = Field(ge=1e-6, le=1e12, description="M_c, on the output shaft [N·m]")
     clutch_stiffness: float | None = Field(
         default=None, ge=1e-6, le=1e15, description="c, linearized clutch [N·m/rad]"
@@ -195,7 +195,7 @@ class Drive(CaseModel):
 
 
 class Antiresonance(CaseModel):
-    machine_inertia: float = Field(ge=1e-9, le=1e9, description="J₃, the machine [kg·m^2]")
+    machine_inertia: float = Field(ge=1e-9, le=1e9, description="J₃, the machine [kg·m²]")
     ratio: float = Field(
         default=1.0, gt=0, le=1e4, description="i = ω₃/ω₂, machine over output speed [-]"
     )
@@ -217,7 +217,7 @@ class Pendulum(CaseModel):
         default=None, ge=1e-6, lt=math.pi, description="θ_max, allowed swing [rad]"
     )
     bob_density: float = Field(
-        default=STEEL_DENSITY, ge=1.0, le=1e5, description="bob material [kg/m^3]"
+        default=STEEL_DENSITY, ge=1.0, le=1e5, description="bob material [kg/m³]"
     )
     bifilar_pin_diameter: float | None = Field(
         default=None, gt=0, le=10, description="d, pin of a bifilar design [m]"
