@@ -7,6 +7,8 @@
   ``--save``, ``--report``), check, run, sweep, study, new; shell completion.
 - ``command.py``: the bodies of a problem command and of ``run``, and the one error
   handler (exit codes, messages), without typer: shared by launch.py and app.py.
+- ``schema.py``: the bodies of ``schema`` (a problem's case-file JSON Schema, its keys
+  as a table) and ``new`` (a starter case beside its schema).
 - ``terminal.py``: printing a report (plain text on a pipe, rich on a terminal),
   progress bars, the run summary, sweep tables.
 - ``startup.py``: what every command sets before it runs (warnings, pydantic's

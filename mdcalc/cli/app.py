@@ -12,7 +12,6 @@ module; the command bodies both use are in :mod:`mdcalc.cli.command`.
 # No `from __future__ import annotations` here: typer would eval every string
 # annotation of every command at start-up (~260 evals, 10 ms of `--help`).
 
-import sys
 from collections.abc import Callable
 from pathlib import Path
 from typing import Annotated
@@ -431,30 +430,27 @@ def new_command(
         str, typer.Argument(help=f"One of: {', '.join(PROBLEMS)}.", autocompletion=complete_problem)
     ],
     output: Annotated[
-        Path | None, typer.Option("-o", "--output", help="Write to this file, not stdout.")
+        Path | None,
+        typer.Option(
+            "-o",
+            "--output",
+            help="Write to this file (and the schema beside it, mdcalc-PROBLEM.schema.json, "
+            "unless one is there), not stdout.",
+        ),
     ] = None,
+    minimal: Annotated[
+        bool, typer.Option("--minimal", help="Only the keys the scene needs, no comments.")
+    ] = False,
     force: Annotated[bool, typer.Option("--force", help="Overwrite an existing file.")] = False,
     debug: DebugOption = False,
 ) -> None:
-    """Write a starter case file for PROBLEM that runs as it is."""
+    """Write a starter case file for PROBLEM that runs as it is: every key with its unit
+    and meaning, optional sections commented out."""
 
     def body() -> int:
-        if problem not in PROBLEMS:
-            raise InputError(
-                "mdcalc new",
-                [Problem(f"unknown problem {problem!r}; allowed: {', '.join(PROBLEMS)}")],
-            )
-        data = PROBLEMS[problem].load().template()
-        if output is None:
-            import tomli_w
+        from mdcalc.cli.schema import run_new
 
-            sys.stdout.write(tomli_w.dumps(data))
-        else:
-            from mdcalc.input.casefile import write_toml_atomic
-
-            write_toml_atomic(output, data, force=force)
-            print_error(f"wrote {output}")
-        return 0
+        return run_new(problem, output, minimal, force)
 
     raise typer.Exit(guard(body, debug))
 

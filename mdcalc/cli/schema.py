@@ -1,5 +1,6 @@
-"""The body of ``mdcalc schema``: a problem's case-file schema as JSON, or its keys as a
-table (:mod:`mdcalc.input.schema` makes both from the problem's pydantic model)."""
+"""The bodies of ``mdcalc schema`` (a problem's case-file schema as JSON, or its keys as
+a table; :mod:`mdcalc.input.schema` makes both from the problem's pydantic model) and
+of ``mdcalc new`` (a starter case beside its schema; :mod:`mdcalc.input.starter`)."""
 
 from __future__ import annotations
 
@@ -68,4 +69,54 @@ def run_schema(problem: str, output: Path | None, keys: bool, force: bool) -> in
 
     write_atomic(output, text, replace=force)
     print_error(f"wrote {output}")
+    return 0
+
+
+def starter(problem: str) -> str:
+    """The starter case of ``problem`` as ``mdcalc new`` writes it."""
+    from mdcalc.input.starter import starter_text
+
+    schema = problem_schema(problem)
+    spec = PROBLEMS[problem]
+    module = spec.load()
+    extras: dict[str, Any] = getattr(module, "starter_extras", dict)()
+    return starter_text(
+        problem,
+        spec.summary,
+        module.Case,
+        schema,
+        module.template(),
+        extras,
+        schema_file_name(problem),
+    )
+
+
+def run_new(problem: str, output: Path | None, minimal: bool, force: bool) -> int:
+    """``mdcalc new PROBLEM [-o FILE] [--minimal] [--force]``."""
+    import sys
+
+    from mdcalc.cli.command import print_error
+    from mdcalc.input.files import write_atomic
+
+    if problem not in PROBLEMS:
+        raise InputError(
+            "mdcalc new",
+            [Problem(f"unknown problem {problem!r}; allowed: {', '.join(PROBLEMS)}")],
+        )
+    if minimal:
+        import tomli_w
+
+        text = tomli_w.dumps(PROBLEMS[problem].load().template())
+    else:
+        text = starter(problem)
+    if output is None:
+        sys.stdout.write(text)
+        return 0
+    write_atomic(output, text, replace=force)
+    print_error(f"wrote {output}")
+    if not minimal:
+        beside = output.parent / schema_file_name(problem)
+        if not beside.exists():
+            write_atomic(beside, schema_text(problem), replace=False)
+            print_error(f"wrote {beside} (for an editor: Taplo, Even Better TOML)")
     return 0

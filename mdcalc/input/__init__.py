@@ -10,6 +10,10 @@ rules for the user's files (``files.py``) that every output written also follows
   ``--report`` all write through it).
 - ``quantities.py``: quantity strings (``"52.5 N*m/deg"``) through pint.
 - ``expr.py``: the restricted formula language of case files (no eval).
+- ``schema.py``: a problem's case file as a JSON Schema (from its pydantic model), and
+  its keys as rows of a table.
+- ``starter.py``: the starter case of ``mdcalc new``: the template with every key of
+  the schema beside it, commented out where optional.
 
 Imports nothing eagerly.
 """

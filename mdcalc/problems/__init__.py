@@ -13,7 +13,10 @@ A problem supplies, for its subcommand to exist:
 3. ``report(result) -> Report`` -- a :class:`mdcalc.output.report.Report` of the
    sections the scene needs (quantities with stable keys, tables, a Methods table
    built by :func:`mdcalc.methods.compare`).
-4. ``template() -> dict`` -- a starter case that runs as it is (``mdcalc new``).
+4. ``template() -> dict`` -- a starter case that runs as it is (``mdcalc new``), and
+   optionally ``starter_extras() -> dict``: example values the starter shows commented
+   out beside it (other keys of its sections, and optional sections with their own
+   optional keys under ``_or``; :mod:`mdcalc.input.starter`).
 5. Optionally ``charts(result) -> list[Chart]`` (``--plot``; data only, no
    matplotlib) and ``sweep(case, grid, wanted=None) -> dict | None``, the
    vectorized kernel of ``mdcalc sweep`` and ``mdcalc study`` (``wanted``: the result

@@ -645,3 +645,14 @@ def template() -> dict[str, Any]:
         "road": {"surface": "dry-asphalt", "resistance": 0.015},
         "driver": {"reaction_time": 1.0, "build_up_time": 0.2},
     }
+
+
+def starter_extras() -> dict[str, Any]:
+    """Example values ``mdcalc new`` shows commented out beside :func:`template`."""
+    return {
+        "vehicle": {"initial_speed": 27.78},
+        "road": {"adhesion": 0.8, "compare_surfaces": True},
+        "brakes": {"traction_force": 1644.0, "force_multiple": 10.0,
+                   "_or": {"force": 12000.0, "deceleration": 7.0}},
+        "drag": {"drag_coefficient": 0.45, "frontal_area": 1.9},
+    }  # fmt: skip

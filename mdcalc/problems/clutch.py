@@ -650,3 +650,11 @@ def template() -> dict[str, Any]:
         },
         "curves": {"eta_from": 0.65, "eta_to": 0.8, "points": 7},
     }
+
+
+def starter_extras() -> dict[str, Any]:
+    """Example values ``mdcalc new`` shows commented out beside :func:`template`."""
+    return {
+        "clutch": {"gain": 10000.0},
+        "curves": {"driven_ratios": [0.8, 0.735], "driving_ratios": [0.65, 0.7]},
+    }

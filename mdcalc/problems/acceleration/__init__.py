@@ -42,10 +42,11 @@ Its files:
 
 from __future__ import annotations
 
-from mdcalc.problems.acceleration.case import Case, template
+from mdcalc.problems.acceleration.case import Case, starter_extras, template
 from mdcalc.problems.acceleration.charts import charts
 from mdcalc.problems.acceleration.kernel import ODE_REFERENCED, SWEEP_KEYS, sweep
 from mdcalc.problems.acceleration.report import report
 from mdcalc.problems.acceleration.solve import solve
 
-__all__ = ["Case", "solve", "report", "template", "charts", "sweep", "SWEEP_KEYS", "ODE_REFERENCED"]
+__all__ = ["Case", "solve", "report", "template", "starter_extras"]
+__all__ += ["charts", "sweep", "SWEEP_KEYS", "ODE_REFERENCED"]  # what a study, sweep, --plot use

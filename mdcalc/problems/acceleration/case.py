@@ -351,3 +351,20 @@ def template() -> dict[str, Any]:
         "drag": {"drag_coefficient": 0.48, "frontal_area": 1.85},
         "target": {"speed_kmh": 100.0},
     }
+
+
+def starter_extras() -> dict[str, Any]:
+    """Example values ``mdcalc new`` shows commented out beside :func:`template` (keys
+    of its sections, optional sections; ``_or``: keys shown but not uncommented)."""
+    return {
+        "vehicle": {"rotating_mass_factors": [1.46, 1.2, 1.11, 1.08]},
+        "engine": {
+            "max_speed_rpm": 5600.0,
+            "torque_curve": {"speed_rpm": [1000.0, 3000.0, 5400.0],
+                             "torque": [96.0, 116.0, 100.8]},
+        },
+        "transmission": {"shift_speed_rpm": 5400.0, "launch_speed_rpm": 2000.0},
+        "target": {"speed": 27.78, "measured_time": 17.0, "table_step": 0.5},
+        "adhesion": {"coefficient": 0.8, "cg_height": 0.55, "wheelbase": 2.424},
+        "lecture": {"traction_coefficient": 1.1, "shift_angular_speed": 300.0},
+    }  # fmt: skip

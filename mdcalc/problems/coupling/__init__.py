@@ -35,10 +35,11 @@ Its files:
 
 from __future__ import annotations
 
-from mdcalc.problems.coupling.case import Case, template
+from mdcalc.problems.coupling.case import Case, starter_extras, template
 from mdcalc.problems.coupling.charts import charts
 from mdcalc.problems.coupling.kernel import SWEEP_KEYS, sweep
 from mdcalc.problems.coupling.report import report
 from mdcalc.problems.coupling.solve import solve
 
-__all__ = ["Case", "solve", "report", "template", "charts", "sweep", "SWEEP_KEYS"]
+__all__ = ["Case", "solve", "report", "template", "starter_extras"]
+__all__ += ["charts", "sweep", "SWEEP_KEYS"]  # what a study, sweep, --plot use

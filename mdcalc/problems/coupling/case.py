@@ -142,3 +142,16 @@ def template() -> dict[str, Any]:
         "harmonic": {"driving_torque": 200.0, "driven_torque": 0.0, "speed": 60.0},
         "pulse": {"torque": 500.0, "duration": 0.05},
     }
+
+
+def starter_extras() -> dict[str, Any]:
+    """Example values ``mdcalc new`` shows commented out beside :func:`template` (keys
+    of its sections, optional sections; ``_or``: keys shown but not uncommented)."""
+    return {
+        "coupling": {"stiffness": 3008.03, "log_decrement": 0.315, "damping": 50.0},
+        "harmonic": {"speed_rpm": 573.0},
+        "pulse": {"horizon": 1.0},
+        "ramp": {"torque": 500.0, "rise_time": 0.3, "_or": {"horizon": 2.0}},
+        "torque_table": {"time": [0.0, 0.1, 0.2, 0.5], "torque": [0.0, 500.0, 500.0, 0.0],
+                         "_or": {"horizon": 1.0}},
+    }  # fmt: skip

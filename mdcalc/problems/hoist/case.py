@@ -137,3 +137,22 @@ def template() -> dict[str, Any]:
         },
         "start": {"time": 1.5, "machine": "crane"},
     }
+
+
+def starter_extras() -> dict[str, Any]:
+    """Example values ``mdcalc new`` shows commented out beside :func:`template` (keys
+    of its sections, optional sections; ``_or``: keys shown but not uncommented)."""
+    return {
+        "drive": {
+            "inertia_estimate_factor": 1.2,
+            "shafts": [
+                {"name": "intermediate gear", "inertia": 0.5, "ratio": 5.0,
+                 "_or": {"speed_rpm": 192.0}},
+            ],
+        },
+        "start": {"starting_torque": 450.0, "allowable_acceleration": 0.3},
+        "rope": {
+            "elastic_modulus": 1.0e11, "area": 1.5e-4, "length": 10.0, "branches": 4,
+            "_or": {"stiffness": 6.0e6, "drive_mass": 4000.0, "slack_length": 0.05},
+        },
+    }  # fmt: skip

@@ -40,10 +40,11 @@ Its files:
 
 from __future__ import annotations
 
-from mdcalc.problems.mechanism.case import Case, template
+from mdcalc.problems.mechanism.case import Case, starter_extras, template
 from mdcalc.problems.mechanism.charts import charts
 from mdcalc.problems.mechanism.kernel import ODE_REFERENCED, SWEEP_KEYS, sweep
 from mdcalc.problems.mechanism.report import report
 from mdcalc.problems.mechanism.solve import solve
 
-__all__ = ["Case", "solve", "report", "template", "charts", "sweep", "SWEEP_KEYS", "ODE_REFERENCED"]
+__all__ = ["Case", "solve", "report", "template", "starter_extras"]
+__all__ += ["charts", "sweep", "SWEEP_KEYS", "ODE_REFERENCED"]  # what a study, sweep, --plot use

@@ -256,3 +256,18 @@ def template() -> dict[str, Any]:
         "inertia": {"formula": "2.0 + 0.4*cos(2*phi)"},
         "motion": {"start_speed": 80.0, "revolutions": 5.0, "steps_per_revolution": 16},
     }
+
+
+def starter_extras() -> dict[str, Any]:
+    """Example values ``mdcalc new`` shows commented out beside :func:`template`: the
+    crank press as tables (``cases/mechanism/tabulated_press.toml``)."""
+    angles = [0, 30, 60, 90, 120, 150, 180, 210, 240, 270, 300, 330, 360]
+    radians = [round(math.radians(a), 15) for a in angles]
+    press = [400.0, 250.0, 140.0, 100.0, 140.0, 250.0] + [400.0] * 7
+    return {
+        "torque": {"angles": radians, "angles_deg": angles, "speeds": [0.0, 200.0],
+                   "values": [[m, round(m - 761.905, 3)] for m in press]},
+        "inertia": {"value": 2.0, "angles": radians, "angles_deg": angles,
+                    "values": [2.4, 2.3, 2.0, 1.6, 1.4, 1.5, 1.9, 2.2, 2.3, 2.0, 1.7, 2.0, 2.4]},
+        "motion": {"start_speed_rpm": 763.9},
+    }  # fmt: skip

@@ -36,10 +36,11 @@ Its files:
 
 from __future__ import annotations
 
-from mdcalc.problems.mine_hoist.case import Case, template
+from mdcalc.problems.mine_hoist.case import Case, starter_extras, template
 from mdcalc.problems.mine_hoist.charts import charts
 from mdcalc.problems.mine_hoist.kernel import SWEEP_KEYS, sweep
 from mdcalc.problems.mine_hoist.report import report
 from mdcalc.problems.mine_hoist.solve import solve
 
-__all__ = ["Case", "solve", "report", "template", "charts", "sweep", "SWEEP_KEYS"]
+__all__ = ["Case", "solve", "report", "template", "starter_extras"]
+__all__ += ["charts", "sweep", "SWEEP_KEYS"]  # what a study, sweep, --plot use

@@ -136,3 +136,17 @@ def template() -> dict[str, Any]:
         },
         "loads": {"drive_torque": 1.0e6, "load_torque": 5.0e5},
     }
+
+
+def starter_extras() -> dict[str, Any]:
+    """Example values ``mdcalc new`` shows commented out beside :func:`template` (keys
+    of its sections, optional sections; ``_or``: keys shown but not uncommented)."""
+    return {
+        "rope": {"mass_per_metre": 7.0, "drum_radius": 3.0, "chord_length": 49.2,
+                 "length": 1025.0, "_or": {"axial_stiffness": 1.0176e8, "sheave_radius": 2.5}},
+        "analysis": {"horizon": 47.0},
+        "sweep": {
+            "heights": [410.0, 615.0, 820.0, 1025.0],
+            "_needs": "needs [rope] with axial_stiffness, in place of [hoist]'s two stiffnesses",
+        },
+    }  # fmt: skip

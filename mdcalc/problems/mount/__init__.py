@@ -26,11 +26,12 @@ Its files:
 
 from __future__ import annotations
 
-from mdcalc.problems.mount.case import Case, template
+from mdcalc.problems.mount.case import Case, starter_extras, template
 from mdcalc.problems.mount.charts import charts
 from mdcalc.problems.mount.kernel import sweep
 from mdcalc.problems.mount.report import report
 from mdcalc.problems.mount.scene import SWEEP_KEYS
 from mdcalc.problems.mount.solve import solve
 
-__all__ = ["Case", "solve", "report", "template", "charts", "sweep", "SWEEP_KEYS"]
+__all__ = ["Case", "solve", "report", "template", "starter_extras"]
+__all__ += ["charts", "sweep", "SWEEP_KEYS"]  # what a study, sweep, --plot use

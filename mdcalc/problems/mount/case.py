@@ -75,3 +75,12 @@ def template() -> dict[str, Any]:
         "crank": {"piston_weight": 100.0, "radius": 0.05, "rod_ratio": 0.2, "speed": 150.0},
         "isolation": {"transmissibility": 0.02},
     }
+
+
+def starter_extras() -> dict[str, Any]:
+    """Example values ``mdcalc new`` shows commented out beside :func:`template`."""
+    return {
+        "engine": {"mass": 1019.7},
+        "mounts": {"stiffness": 1.0e6},
+        "crank": {"piston_mass": 10.197, "speed_rpm": 1432.4},
+    }

@@ -36,10 +36,11 @@ Its files:
 
 from __future__ import annotations
 
-from mdcalc.problems.resonance.case import Case, template
+from mdcalc.problems.resonance.case import Case, starter_extras, template
 from mdcalc.problems.resonance.charts import charts
 from mdcalc.problems.resonance.kernel import ODE_REFERENCED, SWEEP_KEYS, sweep
 from mdcalc.problems.resonance.report import report
 from mdcalc.problems.resonance.solve import solve
 
-__all__ = ["Case", "solve", "report", "template", "charts", "sweep", "SWEEP_KEYS", "ODE_REFERENCED"]
+__all__ = ["Case", "solve", "report", "template", "starter_extras"]
+__all__ += ["charts", "sweep", "SWEEP_KEYS", "ODE_REFERENCED"]  # what a study, sweep, --plot use

@@ -201,3 +201,11 @@ def template() -> dict[str, Any]:
         "resonance": {"order": 4.5, "mode": 2, "harmonic_torque": 50.0},
         "mathieu": {"damping": 0.05, "points": [[1.0, 0.1], [1.0, 0.02]]},
     }
+
+
+def starter_extras() -> dict[str, Any]:
+    """Example values ``mdcalc new`` shows commented out beside :func:`template`."""
+    return {
+        "campbell": {"orders": [3.0, 4.5, 6.0]},
+        "measured": [{"order": 4.5, "speed_rpm": 1500.0, "_or": {"frequency_hz": 112.5}}],
+    }

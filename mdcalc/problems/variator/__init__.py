@@ -59,10 +59,11 @@ Its files:
 
 from __future__ import annotations
 
-from mdcalc.problems.variator.case import Case, template
+from mdcalc.problems.variator.case import Case, starter_extras, template
 from mdcalc.problems.variator.charts import charts
 from mdcalc.problems.variator.kernel import SWEEP_KEYS, sweep
 from mdcalc.problems.variator.report import report
 from mdcalc.problems.variator.solve import solve
 
-__all__ = ["Case", "solve", "report", "template", "charts", "sweep", "SWEEP_KEYS"]
+__all__ = ["Case", "solve", "report", "template", "starter_extras"]
+__all__ += ["charts", "sweep", "SWEEP_KEYS"]  # what a study, sweep, --plot use

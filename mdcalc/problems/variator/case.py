@@ -281,3 +281,28 @@ def template() -> dict[str, Any]:
         },
         "pendulum": {"pivot_radius": 0.1, "order": 4.0},
     }
+
+
+def starter_extras() -> dict[str, Any]:
+    """Example values ``mdcalc new`` shows commented out beside :func:`template` (keys
+    of its sections, optional sections; ``_or``: keys shown but not uncommented): the VK
+    impulse variator of seed 000 §8.3-8.5 (``cases/variator/vk_variator.toml``)."""
+    return {
+        "absorber": {"absorber_stiffness": 80.0, "tuning_frequency": 20.0},
+        "pendulum": {"speed_rpm": 2000.0, "speed": 209.4, "inertia_torque": 1200.0,
+                     "max_swing": 0.3, "bifilar_pin_diameter": 0.02},
+        "motor": {"pole_pairs": 3, "nominal_speed_rpm": 949.0, "nominal_power": 3000.0,
+                  "overload_ratio": 2.5,
+                  "_or": {"synchronous_speed_rpm": 1000.0, "nominal_torque": 30.19}},
+        "clutch": {"loading_coefficient_kgfm": 2.785e5, "loading_exponent": 2.15,
+                   "load_min": 50.0, "load_max": 300.0, "unloading_stiffness_kgfm": 8.9e5,
+                   "loop_area_ratio": 0.6,
+                   "_or": {"loading_coefficient": 2.731e6, "unloading_stiffness": 8.728e6}},
+        "mechanism": {"mechanisms": 4, "input_speed_rpm": 1000.0, "output_speed_rpm": 185.0,
+                      "_or": {"mean_ratio": 5.405}},
+        "drive": {"driven_inertia": 0.05, "load_torque": 300.0, "clutch_stiffness_kgfm": 8.9e5,
+                  "_or": {"clutch_stiffness": 8.728e6, "clutch_damping": 350.0,
+                          "clutch_loop_area_ratio": 0.6}},
+        "antiresonance": {"machine_inertia": 1.5, "coupling_damping": 20.0,
+                          "_or": {"coupling_stiffness": 8490.0}},
+    }  # fmt: skip
