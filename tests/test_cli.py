@@ -33,6 +33,24 @@ def test_help_lists_every_problem(cli):
         assert name in result.stdout
 
 
+def test_help_shows_each_summary_whole_and_true(cli):
+    """Issue 32.5: no summary cut off with '...'; each command's options are its own."""
+    from mdcalc.cli.app import app
+
+    result = cli("--help")
+    assert "..." not in result.stdout.split("Commands:")[1]
+    text = " ".join(result.stdout.split()).replace("- ", "-")  # click wraps at hyphens
+    for command in app.registered_commands:
+        summary = " ".join((command.short_help or "").split())
+        assert summary and summary in text, command.name
+    study = " ".join(cli("study", "--help").stdout.split())
+    assert "--save" not in study and "--report" not in study and "per file" not in study
+    assert "Let --plot and --out overwrite a file." in study
+    sweep = " ".join(cli("sweep", "--help").stdout.split())
+    assert "per file" not in sweep
+    assert "mdcalc CASE.toml" in text
+
+
 def test_lecture_braking_prints_the_lecture_numbers_and_the_lock_warning():
     # Real console script: what the issue promises a user sees.
     done = run_script("braking", LECTURE)

@@ -3,6 +3,7 @@ output, messages and exit codes as the typer application gives the same line."""
 
 from __future__ import annotations
 
+import json
 import subprocess
 import sys
 
@@ -10,7 +11,7 @@ import pytest
 from typer.testing import CliRunner
 
 from mdcalc.cli.launch import direct_run
-from tests.conftest import CASES
+from tests.conftest import CASES, assert_no_traceback
 
 LECTURE = str(CASES / "braking" / "lecture.toml")
 
@@ -241,6 +242,8 @@ print("TYPER", "typer" in sys.modules, code, file=sys.stderr)
         (["braking", LECTURE, "--jsn"], True, 2),
         (["run", LECTURE, "--json", "--jobs", "1"], False, 0),
         (["run", LECTURE, "--json", "--time-limit", "5"], True, 0),
+        ([LECTURE, "--json"], False, 0),  # mdcalc CASE.toml: the problem the file names
+        ([LECTURE, "--time-limit", "5"], True, 0),
     ],
 )
 def test_a_plain_run_does_not_import_typer(args, typer, code):
@@ -251,3 +254,47 @@ def test_a_plain_run_does_not_import_typer(args, typer, code):
         timeout=120,
     )
     assert done.stderr.strip().splitlines()[-1] == f"TYPER {typer} {code}"
+
+
+# ------------------------------------------------------ mdcalc CASE.toml (issue 32.3)
+
+
+@pytest.mark.parametrize("options", [[], ["--json"], ["--time-limit", "5"]])
+def test_a_case_file_runs_the_problem_it_names(cli, options):
+    import re
+
+    named = cli(LECTURE, *options)
+    explicit = cli("braking", LECTURE, *options)
+    assert named.exit_code == explicit.exit_code == 0
+
+    def masked(text: str) -> str:  # run times differ from run to run
+        text = re.sub(r'"seconds": [^,\n]+', '"seconds": T', text)
+        return re.sub(r"[\d.]+(e-?\d+)?\s*(µs|ms|ns|s)\b", "T", text)
+
+    assert masked(named.stdout) == masked(explicit.stdout)
+    assert named.stderr == explicit.stderr
+
+
+def test_a_study_file_runs_its_study(cli):
+    study = str(CASES / "studies" / "hoist_load.toml")
+    named = cli(study, "--json")
+    assert named.exit_code == 0, named.stderr
+    assert json.loads(named.stdout)["kind"] == "study"
+
+
+@pytest.mark.parametrize(
+    ("text", "says"),
+    [
+        ('title = "x"\n[vehicle]\nproblem = "braking"\n', "the file names no problem"),
+        ('problem = "brakes"\n', "unknown problem 'brakes'; allowed: hoist"),
+        (None, "no such file"),
+    ],
+)
+def test_a_case_file_that_names_no_problem_is_exit_2(cli, tmp_path, text, says):
+    path = tmp_path / "case.toml"
+    if text is not None:
+        path.write_text(text, encoding="utf-8")
+    result = cli(path)
+    assert result.exit_code == 2
+    assert result.stderr.startswith(f"{path}: error: ") and says in result.stderr
+    assert_no_traceback(result)

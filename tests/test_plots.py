@@ -118,7 +118,7 @@ def test_a_plot_is_not_overwritten_without_force(tmp_path, cli):
 
 
 def test_an_unknown_format_is_refused_before_solving(tmp_path, cli):
-    result = cli("braking", CASES / "braking" / "lecture.toml", "--plot", tmp_path / "p.gif")
+    result = cli("coupling", CASES / "coupling" / "example_8_1.toml", "--plot", tmp_path / "p.gif")
     assert result.exit_code == 2
     assert "--plot: use a file ending .png, .svg, .pdf" in result.stderr
     assert result.stdout == ""  # refused before the report
@@ -132,13 +132,16 @@ def test_a_scene_without_curves_says_so(tmp_path, cli):
     assert not out.exists()
 
 
-def test_a_problem_without_curves_says_so(tmp_path, cli):
-    if hasattr(PROBLEMS["braking"].load(), "charts"):
-        pytest.skip("braking draws now")
+def test_a_problem_without_curves_offers_no_plot(tmp_path, cli):
+    """braking draws nothing: its command has no --plot (issue 32.5), and says so as any
+    unknown option; every problem that draws has one."""
+    for name, spec in PROBLEMS.items():
+        assert spec.draws == hasattr(spec.load(), "charts"), name
+        assert ("--plot" in cli(name, "--help").stdout) == spec.draws, name
     out = tmp_path / "p.png"
     result = cli("braking", CASES / "braking" / "lecture.toml", "--plot", out)
-    assert result.exit_code == 0
-    assert "this problem draws no plot; no file written" in result.stderr
+    assert result.exit_code == 2
+    assert "No such option: --plot" in result.stderr
     assert not out.exists()
 
 
@@ -149,7 +152,7 @@ def test_missing_matplotlib_is_a_clear_message(tmp_path, cli, monkeypatch):
     monkeypatch.setattr(
         importlib.util, "find_spec", lambda n, *a: None if n == "matplotlib" else real(n, *a)
     )
-    result = cli("braking", CASES / "braking" / "lecture.toml", "--plot", tmp_path / "p.png")
+    result = cli("coupling", CASES / "coupling" / "example_8_1.toml", "--plot", tmp_path / "p.png")
     assert result.exit_code == 2
     assert "pip install 'mdcalc[plot]'" in result.stderr
     assert_no_traceback(result)

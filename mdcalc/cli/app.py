@@ -41,8 +41,10 @@ from mdcalc.problems import PROBLEMS, ProblemSpec
 
 app = typer.Typer(
     name="mdcalc",
-    help="Machine-dynamics calculator: mdcalc PROBLEM CASE.toml [--json]. "
-    "`mdcalc new PROBLEM` writes a starter case.",
+    help="Machine-dynamics calculator: mdcalc PROBLEM CASE.toml [--json], or mdcalc "
+    "CASE.toml (the problem the file names; a study file runs its study). "
+    "`mdcalc new PROBLEM -o case.toml` writes a starter case, `mdcalc schema PROBLEM --keys` "
+    "lists its keys.",
     no_args_is_help=True,
     add_completion=True,
     pretty_exceptions_enable=False,
@@ -143,6 +145,11 @@ ReportOption = Annotated[
 ]
 
 
+NoPlotForceOption = Annotated[
+    bool, typer.Option("--force", help="Let --save and --report overwrite a file.")
+]
+
+
 def _make_problem_command(spec: ProblemSpec) -> Callable[..., None]:
     def command(
         case: CaseArgument,
@@ -159,8 +166,20 @@ def _make_problem_command(spec: ProblemSpec) -> Callable[..., None]:
             run_problem(spec, case, as_json, debug, plot, save, force, limit, document=report)
         )
 
-    command.__doc__ = spec.summary
-    return command
+    def without_plot(  # a scene that draws nothing (braking): no --plot to offer
+        case: CaseArgument,
+        as_json: JsonOption = False,
+        save: SaveOption = None,
+        report: ReportOption = None,
+        force: NoPlotForceOption = False,
+        time_limit: TimeLimitOption = DEFAULT_TIME_LIMIT,
+        debug: DebugOption = False,
+    ) -> None:
+        command(case, as_json, None, save, report, force, time_limit, debug)
+
+    chosen = command if spec.draws else without_plot
+    chosen.__doc__ = spec.summary
+    return chosen
 
 
 for _spec in PROBLEMS.values():
@@ -175,9 +194,31 @@ JobsOption = Annotated[
         "--jobs", "-j", min=0, help="Worker processes; 0: one per core (at most one per file)."
     ),
 ]
+PointJobsOption = Annotated[
+    int,
+    typer.Option(
+        "--jobs",
+        "-j",
+        min=0,
+        help="Worker processes for the points run one by one (a vectorized sweep runs in "
+        "this process); 0: one per core.",
+    ),
+]
+SampleJobsOption = Annotated[
+    int,
+    typer.Option(
+        "--jobs",
+        "-j",
+        min=0,
+        help="Worker processes for the samples (blocks of a vectorized study, or samples "
+        "run one by one); 0: one per core.",
+    ),
+]
 
 
-@app.command("check")
+@app.command(
+    "check", short_help="Run the case files that have an [expect] table; exit 1 if a value is off."
+)
 def check_command(
     paths: Annotated[
         list[Path], typer.Argument(help="Case files or folders.", autocompletion=complete_case)
@@ -219,7 +260,7 @@ def check_command(
     raise typer.Exit(guard(body, debug))
 
 
-@app.command("run")
+@app.command("run", short_help="Run many case files in a process pool or on a dask cluster.")
 def run_command(
     paths: Annotated[
         list[Path],
@@ -258,7 +299,7 @@ def run_command(
     )
 
 
-@app.command("sweep")
+@app.command("sweep", short_help="Run one case over a grid of values of its keys.")
 def sweep_command(
     case: CaseArgument,
     vary: Annotated[
@@ -274,7 +315,7 @@ def sweep_command(
     out: Annotated[
         Path | None, typer.Option("--out", help="Write the table to FILE.csv or FILE.json.")
     ] = None,
-    jobs: JobsOption = 0,
+    jobs: PointJobsOption = 0,
     time_limit: TimeLimitOption = DEFAULT_TIME_LIMIT,
     scheduler: SchedulerOption = None,
     debug: DebugOption = False,
@@ -319,7 +360,9 @@ def sweep_command(
     raise typer.Exit(guard(body, debug))
 
 
-@app.command("study")
+@app.command(
+    "study", short_help="Run a scene over the scatter of its inputs: statistics, limits, Sobol."
+)
 def study_command(
     case: Annotated[
         Path,
@@ -331,7 +374,15 @@ def study_command(
         ),
     ],
     as_json: JsonOption = False,
-    plot: PlotOption = None,
+    plot: Annotated[
+        Path | None,
+        typer.Option(
+            "--plot",
+            metavar="FILE",
+            help="Draw a histogram and a CDF of each result (limits marked) and the Sobol "
+            "indices or rank correlations into FILE.png, .svg or .pdf (needs mdcalc[plot]).",
+        ),
+    ] = None,
     out: Annotated[
         Path | None,
         typer.Option(
@@ -341,8 +392,10 @@ def study_command(
             "(needs pyarrow).",
         ),
     ] = None,
-    force: ForceOption = False,
-    jobs: JobsOption = 0,
+    force: Annotated[
+        bool, typer.Option("--force", help="Let --plot and --out overwrite a file.")
+    ] = False,
+    jobs: SampleJobsOption = 0,
     time_limit: Annotated[
         float,
         typer.Option(
@@ -424,7 +477,7 @@ def study_command(
     raise typer.Exit(guard(body, debug))
 
 
-@app.command("new")
+@app.command("new", short_help="Write a starter case file for PROBLEM, with its schema.")
 def new_command(
     problem: Annotated[
         str, typer.Argument(help=f"One of: {', '.join(PROBLEMS)}.", autocompletion=complete_problem)
@@ -455,7 +508,9 @@ def new_command(
     raise typer.Exit(guard(body, debug))
 
 
-@app.command("schema")
+@app.command(
+    "schema", short_help="Write PROBLEM's case-file JSON Schema, or list its keys (--keys)."
+)
 def schema_command(
     problem: Annotated[
         str, typer.Argument(help=f"One of: {', '.join(PROBLEMS)}.", autocompletion=complete_problem)

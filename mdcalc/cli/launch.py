@@ -9,9 +9,15 @@ floor. So does a plain batch, ``mdcalc run PATH... [--jobs N] [--json] [--debug]
 misspelling, ``--help``, shell completion, goes through the typer application
 (:mod:`mdcalc.cli.app`) as before; the body, its output, its messages and exit codes are
 the same either way (tests/test_launch.py).
+
+``mdcalc CASE.toml [options]`` runs the problem the file names (``problem = ...``; a
+study file, one with a ``[study]`` table, runs as ``mdcalc study``): the command line
+is read as ``mdcalc PROBLEM CASE.toml [options]`` and goes the same ways
+(:func:`named_problem`).
 """
 
 import os
+import re
 import sys
 
 from mdcalc.cli.startup import prepare
@@ -62,6 +68,50 @@ def direct_batch(argv: list[str]) -> tuple[list[str], int, bool, bool] | None:
     return (paths, jobs, as_json, debug) if paths else None
 
 
+def named_problem(argv: list[str]) -> list[str] | str | None:
+    """``argv`` with the command the case file names put before it, when ``argv``
+    starts with a case file instead of a command (``mdcalc case.toml --json``); an
+    error message when that file names no problem (or none of mdcalc's); None for a
+    command line that starts with a command (or an option)."""
+    from mdcalc.problems import PROBLEMS
+
+    if not argv or argv[0].startswith("-") or argv[0] in PROBLEMS or _completing():
+        return None
+    first = argv[0]
+    if not first.endswith(".toml") and not os.path.isfile(first):
+        return None  # a command, or a misspelt one: typer says which
+    try:
+        with open(first, encoding="utf-8", errors="replace") as handle:
+            text = handle.read(1 << 20)
+    except FileNotFoundError:
+        return f"{first}: error: no such file"
+    except OSError as exc:
+        return f"{first}: error: cannot read: {exc.strerror}"
+    name, tables, study = None, False, False
+    for line in text.splitlines():
+        stripped = line.strip()
+        if stripped.startswith("["):
+            tables = True
+            study = study or stripped.replace(" ", "").startswith(("[study]", "[study."))
+            continue
+        match = _PROBLEM_LINE.match(stripped)
+        if match and name is None and not tables:
+            name = match.group(1)
+    allowed = ", ".join(PROBLEMS)
+    if name is None:
+        return (
+            f'{first}: error: problem: the file names no problem (problem = "NAME" before '
+            f"its first table); run: mdcalc PROBLEM {first}, PROBLEM one of: {allowed}"
+        )
+    if name not in PROBLEMS:
+        return f"{first}: error: problem: unknown problem {name!r}; allowed: {allowed}"
+    return ["study" if study else name, *argv]
+
+
+#: The top-level line that names a case file's problem (read before any table).
+_PROBLEM_LINE = re.compile(r"""^problem\s*=\s*["']([^"']*)["']\s*(#.*)?$""")
+
+
 def _readable_or_missing(path: str) -> bool:
     """What typer's path arguments let through (click.Path(readable=True)): a path that
     is not there (the body says so), or one this process may read; an unreadable one
@@ -80,6 +130,14 @@ def _completing() -> bool:
 
 def main() -> None:
     prepare()
+    named = named_problem(sys.argv[1:])
+    if isinstance(named, str):
+        from mdcalc.errors import EXIT_INPUT
+
+        print(named, file=sys.stderr)
+        sys.exit(EXIT_INPUT)
+    if named is not None:
+        sys.argv[1:] = named
     try:
         plain = direct_run(sys.argv[1:])
         if plain is not None:

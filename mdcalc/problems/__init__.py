@@ -81,6 +81,8 @@ class ProblemSpec:
     name: str
     module: str
     summary: str
+    #: Does its scene draw curves (``charts``)? Without, its command has no --plot.
+    draws: bool = True
 
     def load(self) -> ProblemModule:
         return cast(ProblemModule, importlib.import_module(f"mdcalc.problems.{self.module}"))
@@ -103,6 +105,7 @@ PROBLEMS: dict[str, ProblemSpec] = {
             "braking",
             "braking",
             "Car braking: time and distance, adhesion limit, road resistance, drag, reaction.",
+            draws=False,
         ),
         ProblemSpec(
             "coupling",
