@@ -1,4 +1,4 @@
-"""``make bench``: the figures of the README's performance section.
+"""``make bench``: the figures of the performance page (docs/performance.md).
 
 Each figure is a ratio or a rate measured in this one run, so that a slow or busy
 machine slows both sides alike. Nothing here asserts a time: it prints the figures

@@ -1,4 +1,4 @@
-"""The wide probe behind the README's reliability figures (not part of `make test`).
+"""The wide probe behind the reliability figures (docs/reliability.md) (not part of `make test`).
 
 Every numeric field of 21 shipped cases (all ten problems) set in turn to 1e-12,
 1e12, 1e17 and just inside its bounds, each run in-process through the CLI with

@@ -166,20 +166,26 @@ def _make_problem_command(spec: ProblemSpec) -> Callable[..., None]:
             run_problem(spec, case, as_json, debug, plot, save, force, limit, document=report)
         )
 
-    def without_plot(  # a scene that draws nothing (braking): no --plot to offer
-        case: CaseArgument,
-        as_json: JsonOption = False,
-        save: SaveOption = None,
-        report: ReportOption = None,
-        force: NoPlotForceOption = False,
-        time_limit: TimeLimitOption = DEFAULT_TIME_LIMIT,
-        debug: DebugOption = False,
-    ) -> None:
-        command(case, as_json, None, save, report, force, time_limit, debug)
+    command.__doc__ = spec.summary
+    if spec.draws:
+        return command
 
-    chosen = command if spec.draws else without_plot
-    chosen.__doc__ = spec.summary
-    return chosen
+    # A scene that draws nothing (braking): the same command without --plot.
+    import inspect
+
+    signature = inspect.signature(command)
+    parameters = [
+        p.replace(annotation=NoPlotForceOption) if p.name == "force" else p
+        for p in signature.parameters.values()
+        if p.name != "plot"
+    ]
+
+    def without_plot(**given: object) -> None:
+        command(plot=None, **given)  # type: ignore[arg-type]
+
+    without_plot.__signature__ = signature.replace(parameters=parameters)  # type: ignore[attr-defined]
+    without_plot.__doc__ = spec.summary
+    return without_plot
 
 
 for _spec in PROBLEMS.values():

@@ -14,7 +14,7 @@ new section type adds one function to each and nothing else changes: here
 HTML and Markdown (:mod:`mdcalc.output.document`) lay out, and in
 :mod:`mdcalc.output.jsondoc` the JSON.
 
-JSON layout (``format`` 1, stable; documented in the README)::
+JSON layout (``format`` 1, stable; documented in docs/contract.md)::
 
     {"mdcalc": "0.1.0", "format": 1, "problem": "braking", "case": "x.toml",
      "title": "...", "status": "ok" | "no-answer", "message": null | "...",

@@ -51,7 +51,7 @@ def draws(plan: Plan) -> Any:
 #: Independent scrambled designs of a Sobol analysis, at most; the spread of their
 #: estimates is the interval (randomized QMC). SALib's bootstrap treats the points of
 #: one Sobol' design as independent draws: its intervals came out 3 to 51 times the
-#: real scatter of the indices over seeds (README, Sensitivity).
+#: real scatter of the indices over seeds (docs/studies.md, Sensitivity).
 SOBOL_REPLICATES = 16
 #: Base samples of one replicate, at least (the estimators standardize by the
 #: replicate's own variance).
