@@ -49,6 +49,8 @@ def test_help_shows_each_summary_whole_and_true(cli):
     sweep = " ".join(cli("sweep", "--help").stdout.split())
     assert "per file" not in sweep
     assert "mdcalc CASE.toml" in text
+    braking = " ".join(cli("braking", "--help").stdout.split())
+    assert "mdcalc schema braking --keys" in braking  # where its keys are listed
 
 
 def test_lecture_braking_prints_the_lecture_numbers_and_the_lock_warning():

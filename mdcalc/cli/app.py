@@ -189,9 +189,13 @@ def _make_problem_command(spec: ProblemSpec) -> Callable[..., None]:
 
 
 for _spec in PROBLEMS.values():
-    app.command(_spec.name, help=_spec.summary, short_help=_spec.summary)(
-        _make_problem_command(_spec)
-    )
+    app.command(
+        _spec.name,
+        help=_spec.summary,
+        short_help=_spec.summary,
+        epilog=f"The keys of its case file, their units and ranges: mdcalc schema {_spec.name} "
+        f"--keys. A starter case: mdcalc new {_spec.name} -o case.toml.",
+    )(_make_problem_command(_spec))
 
 
 JobsOption = Annotated[

@@ -4,7 +4,7 @@ The starter is the problem's template (a scene that runs as it is) written with 
 key of its schema beside it: each value with its unit and one-line meaning, the keys
 left to their defaults and the other forms of a section commented out (``# ``), and
 every optional section commented out with example values (its own optional keys
-twice, ``## ``, so that uncommenting the section leaves them as they are). Which
+twice, ``# # ``, so that uncommenting the section leaves them as they are). Which
 commented key is an alternative of which, and which optional section needs which, is
 not written down anywhere twice: the starter tries each against the problem's own
 validation and says what it found (``instead of speed_kmh``, ``needs [drive]``).
@@ -33,6 +33,8 @@ OTHER = "_or"
 #: An optional block's own words on what it needs, where uncommenting sections is not
 #: enough (the mine hoist's height sweep: [rope] with EA in place of two stiffnesses).
 NOTE = "_needs"
+#: Where a starter's numbers come from (a key of ``starter_extras``, not a section).
+SOURCE = "_source"
 #: Root keys that are no part of a scene.
 NOT_SCENE = ("expect", "saved", "study")
 
@@ -52,7 +54,8 @@ def starter_text(
     head = [
         f"#:schema ./{schema_file}",
         f"# mdcalc {problem}: {summary}",
-        f"# The numbers: {template.get('title', problem)}; the commented ones are examples.",
+        f"# {template.get('title', problem)}. The numbers: {extras.get(SOURCE, 'illustrative')};",
+        "# the commented ones are examples.",
         "# A line '# key = ...' is optional: its default, or another form of its section",
         "# (the comment says which); remove '# ' to use it. Every key, its unit and range:",
         f"# mdcalc schema {problem} --keys. Run: mdcalc {problem} case.toml",

@@ -650,6 +650,7 @@ def template() -> dict[str, Any]:
 def starter_extras() -> dict[str, Any]:
     """Example values ``mdcalc new`` shows commented out beside :func:`template`."""
     return {
+        "_source": "illustrative; φ the low end of the surface's range, brief §3",
         "vehicle": {"initial_speed": 27.78},
         "road": {"adhesion": 0.8, "compare_surfaces": True},
         "brakes": {"traction_force": 1644.0, "force_multiple": 10.0,

@@ -655,6 +655,7 @@ def template() -> dict[str, Any]:
 def starter_extras() -> dict[str, Any]:
     """Example values ``mdcalc new`` shows commented out beside :func:`template`."""
     return {
+        "_source": "Fig. 2 of seed 004",
         "clutch": {"gain": 10000.0},
         "curves": {"driven_ratios": [0.8, 0.735], "driving_ratios": [0.65, 0.7]},
     }

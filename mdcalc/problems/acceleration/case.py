@@ -357,6 +357,7 @@ def starter_extras() -> dict[str, Any]:
     """Example values ``mdcalc new`` shows commented out beside :func:`template` (keys
     of its sections, optional sections; ``_or``: keys shown but not uncommented)."""
     return {
+        "_source": "the VAZ-2106 of seed 000 §7.3 (its catalogue engine data)",
         "vehicle": {"rotating_mass_factors": [1.46, 1.2, 1.11, 1.08]},
         "engine": {
             "max_speed_rpm": 5600.0,

@@ -148,6 +148,7 @@ def starter_extras() -> dict[str, Any]:
     """Example values ``mdcalc new`` shows commented out beside :func:`template` (keys
     of its sections, optional sections; ``_or``: keys shown but not uncommented)."""
     return {
+        "_source": "example 8.1 of seed 000",
         "coupling": {"stiffness": 3008.03, "log_decrement": 0.315, "damping": 50.0},
         "harmonic": {"speed_rpm": 573.0},
         "pulse": {"horizon": 1.0},

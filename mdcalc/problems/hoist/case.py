@@ -143,6 +143,7 @@ def starter_extras() -> dict[str, Any]:
     """Example values ``mdcalc new`` shows commented out beside :func:`template` (keys
     of its sections, optional sections; ``_or``: keys shown but not uncommented)."""
     return {
+        "_source": "illustrative, for the formulas of seed 000 §7.2 and §7.6",
         "drive": {
             "inertia_estimate_factor": 1.2,
             "shafts": [

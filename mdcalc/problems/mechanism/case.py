@@ -265,6 +265,7 @@ def starter_extras() -> dict[str, Any]:
     radians = [round(math.radians(a), 15) for a in angles]
     press = [400.0, 250.0, 140.0, 100.0, 140.0, 250.0] + [400.0] * 7
     return {
+        "_source": "illustrative, for Kovylin's method of seed 001",
         "torque": {"angles": radians, "angles_deg": angles, "speeds": [0.0, 200.0],
                    "values": [[m, round(m - 761.905, 3)] for m in press]},
         "inertia": {"value": 2.0, "angles": radians, "angles_deg": angles,

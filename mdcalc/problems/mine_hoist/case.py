@@ -142,6 +142,7 @@ def starter_extras() -> dict[str, Any]:
     """Example values ``mdcalc new`` shows commented out beside :func:`template` (keys
     of its sections, optional sections; ``_or``: keys shown but not uncommented)."""
     return {
+        "_source": "seed 002 as printed",
         "rope": {"mass_per_metre": 7.0, "drum_radius": 3.0, "chord_length": 49.2,
                  "length": 1025.0, "_or": {"axial_stiffness": 1.0176e8, "sheave_radius": 2.5}},
         "analysis": {"horizon": 47.0},

@@ -80,6 +80,7 @@ def template() -> dict[str, Any]:
 def starter_extras() -> dict[str, Any]:
     """Example values ``mdcalc new`` shows commented out beside :func:`template`."""
     return {
+        "_source": "illustrative, for seed 000 §7.5",
         "engine": {"mass": 1019.7},
         "mounts": {"stiffness": 1.0e6},
         "crank": {"piston_mass": 10.197, "speed_rpm": 1432.4},

@@ -206,6 +206,7 @@ def template() -> dict[str, Any]:
 def starter_extras() -> dict[str, Any]:
     """Example values ``mdcalc new`` shows commented out beside :func:`template`."""
     return {
+        "_source": "illustrative, for the methods of seed 003",
         "campbell": {"orders": [3.0, 4.5, 6.0]},
         "measured": [{"order": 4.5, "speed_rpm": 1500.0, "_or": {"frequency_hz": 112.5}}],
     }

@@ -288,6 +288,7 @@ def starter_extras() -> dict[str, Any]:
     of its sections, optional sections; ``_or``: keys shown but not uncommented): the VK
     impulse variator of seed 000 §8.3-8.5 (``cases/variator/vk_variator.toml``)."""
     return {
+        "_source": "illustrative; the optional sections: the VK variator of seed 000 §8.3-8.5",
         "absorber": {"absorber_stiffness": 80.0, "tuning_frequency": 20.0},
         "pendulum": {"speed_rpm": 2000.0, "speed": 209.4, "inertia_torque": 1200.0,
                      "max_swing": 0.3, "bifilar_pin_diameter": 0.02},
