@@ -36,6 +36,13 @@ def slow_folder(tmp_path: Path) -> Path:
     return folder
 
 
+def _interruptible() -> None:
+    """Ctrl-C's default in the child, as at a terminal: a test run started in the
+    background (``make test &``) hands its children SIGINT ignored, and a program
+    rightly keeps ignoring it then."""
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
 def start(*args: str) -> subprocess.Popen[str]:
     return subprocess.Popen(
         [str(MDCALC), *args],
@@ -43,6 +50,7 @@ def start(*args: str) -> subprocess.Popen[str]:
         stderr=subprocess.PIPE,
         text=True,
         start_new_session=True,  # its own process group, as a shell job has
+        preexec_fn=_interruptible,
     )
 
 
