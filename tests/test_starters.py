@@ -137,7 +137,7 @@ def test_a_commented_key_is_what_its_comment_says(problem):
     checked = 0
     for number, line in enumerate(lines):
         match = re.match(r"^# (\w+) = .*\((optional|default|instead of (\w+))\)$", line)
-        if not match:
+        if not match or match.group(1) == "base":  # read with the file (test_base.py)
             continue
         changed = list(lines)
         changed[number] = line[2:]

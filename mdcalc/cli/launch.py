@@ -81,22 +81,20 @@ def named_problem(argv: list[str]) -> list[str] | str | None:
     if not first.endswith(".toml") and not os.path.isfile(first):
         return None  # a command, or a misspelt one: typer says which
     try:
-        with open(first, encoding="utf-8", errors="replace") as handle:
-            text = handle.read(1 << 20)
+        name, base, study = _top_lines(first)
     except FileNotFoundError:
         return f"{first}: error: no such file"
     except OSError as exc:
         return f"{first}: error: cannot read: {exc.strerror}"
-    name, tables, study = None, False, False
-    for line in text.splitlines():
-        stripped = line.strip()
-        if stripped.startswith("["):
-            tables = True
-            study = study or stripped.replace(" ", "").startswith(("[study]", "[study."))
-            continue
-        match = _PROBLEM_LINE.match(stripped)
-        if match and name is None and not tables:
-            name = match.group(1)
+    at = first
+    for _ in range(8):  # a file without problem = takes its base's (read_case's rule)
+        if name is not None or base is None:
+            break
+        at = base if os.path.isabs(base) else os.path.join(os.path.dirname(at), base)
+        try:
+            name, base, _ = _top_lines(at)
+        except OSError:
+            return f"{first}: error: base: no such case file: {at}"
     allowed = ", ".join(PROBLEMS)
     if name is None:
         return (
@@ -108,8 +106,28 @@ def named_problem(argv: list[str]) -> list[str] | str | None:
     return ["study" if study else name, *argv]
 
 
-#: The top-level line that names a case file's problem (read before any table).
-_PROBLEM_LINE = re.compile(r"""^problem\s*=\s*["']([^"']*)["']\s*(#.*)?$""")
+def _top_lines(path: str) -> tuple[str | None, str | None, bool]:
+    """(problem, base, has a [study] table) as a case file's own lines say, read
+    without a TOML parser: ``problem = "..."`` and ``base = "..."`` before the first
+    table."""
+    with open(path, encoding="utf-8", errors="replace") as handle:
+        text = handle.read(1 << 20)
+    found: dict[str, str] = {}
+    tables, study = False, False
+    for line in text.splitlines():
+        stripped = line.strip()
+        if stripped.startswith("["):
+            tables = True
+            study = study or stripped.replace(" ", "").startswith(("[study]", "[study."))
+            continue
+        match = _TOP_LINE.match(stripped)
+        if match and not tables:
+            found.setdefault(match.group(1), match.group(2))
+    return found.get("problem"), found.get("base"), study
+
+
+#: A top-level line that names a case file's problem or its base.
+_TOP_LINE = re.compile(r"""^(problem|base)\s*=\s*["']([^"']*)["']\s*(#.*)?$""")
 
 
 def _readable_or_missing(path: str) -> bool:

@@ -61,7 +61,66 @@ class CaseText:
 
 
 def read_case(path: Path) -> CaseText:
-    """Read and parse a TOML case file; raise :class:`InputError` when it cannot."""
+    """Read and parse a TOML case file; raise :class:`InputError` when it cannot.
+
+    A file with ``base = "other.toml"`` (a path relative to the file) takes every key
+    of that case it does not give itself (tables merged key by key; other values, arrays
+    among them, replaced whole), but not its ``[expect]``, ``[saved]`` or ``[study]``; a
+    base may have a base of its own (at most :data:`MAX_BASES` files, no cycle). The
+    data is the merged scene, without ``base``; the text stays the file's own (a key
+    the file does not write has no line in a message)."""
+    case = _read_one(path)
+    if "base" in case.data:
+        case.data = _with_base(case, [path])
+    return case
+
+
+#: Files a chain of ``base =`` may go through.
+MAX_BASES = 8
+#: What a file does not take from its base: its checks, results and study are its own.
+NOT_INHERITED = ("expect", "saved", "study", "base")
+
+
+def _with_base(case: CaseText, chain: list[Path]) -> dict[str, Any]:
+    """``case.data`` over the case its ``base`` names (see :func:`read_case`)."""
+    base = case.data["base"]
+    line = case.line_of(("base",))
+    if not isinstance(base, str) or not base.strip():
+        raise InputError(case.path, [Problem("a path to a case file, as a string", "base", line)])
+    target = Path(base) if Path(base).is_absolute() else case.path.parent / base
+    seen = [p.resolve() for p in chain]
+    if target.resolve() in seen:
+        names = " -> ".join(str(p) for p in [*chain, target])
+        raise InputError(case.path, [Problem(f"a cycle of bases: {names}", "base", line)])
+    if len(chain) >= MAX_BASES:
+        problem = Problem(f"more than {MAX_BASES} files in a chain of bases", "base", line)
+        raise InputError(case.path, [problem])
+    if not target.is_file():
+        problem = Problem(f"no such case file: {target}", "base", line)
+        raise InputError(case.path, [problem])
+    parent = _read_one(target)
+    inherited = _with_base(parent, [*chain, target]) if "base" in parent.data else parent.data
+    own = {k: v for k, v in case.data.items() if k != "base"}
+    mine, theirs = own.get("problem"), inherited.get("problem")
+    if mine is not None and theirs is not None and mine != theirs:
+        problem = Problem(f"{mine!r}, but its base {target} is a {theirs!r} case", "problem")
+        raise InputError(case.path, [problem])
+    return _merged({k: v for k, v in inherited.items() if k not in NOT_INHERITED}, own)
+
+
+def _merged(under: dict[str, Any], over: dict[str, Any]) -> dict[str, Any]:
+    """``over`` on ``under``: tables merged key by key, anything else replaced."""
+    out = dict(under)
+    for key, value in over.items():
+        below = out.get(key)
+        out[key] = (
+            _merged(below, value) if isinstance(value, dict) and isinstance(below, dict) else value
+        )
+    return out
+
+
+def _read_one(path: Path) -> CaseText:
+    """One TOML file, parsed (no ``base`` followed)."""
     raw = read_regular(path)  # a regular file of bounded size, or InputError
     try:
         text = raw.decode("utf-8")

@@ -56,12 +56,19 @@ def case_schema(
         definitions[title] = extra
         schema["properties"][name] = {"$ref": _REF + title, "description": extra.get("description")}
     _tidy(schema)
-    # as a case file reads: its problem and title, the scene, then what checks it
+    schema["properties"]["base"] = {
+        "type": "string",
+        "description": "A case file whose keys this one takes where it gives none (tables "
+        "merged key by key; not its [expect], [saved] or [study]): a path relative to this "
+        "file [-]",
+    }
+    # as a case file reads: its problem, title and base, the scene, then what checks it
     properties = schema["properties"]
-    first = [k for k in ("problem", "title") if k in properties]
+    first = [k for k in ("problem", "title", "base") if k in properties]
     last = [k for k in ("expect", "saved", *(sections or {})) if k in properties]
     middle = [k for k in properties if k not in first and k not in last]
     schema["properties"] = {k: properties[k] for k in first + middle + last}
+    _partial_with_base(schema, own=("expect", "saved", *(sections or {})))
     head = {
         "$schema": DIALECT,
         "title": f"mdcalc {problem} case file",
@@ -74,6 +81,57 @@ def case_schema(
     schema.pop("title", None)
     schema.pop("description", None)
     return {**head, **schema}
+
+
+#: The name of a section's schema without its required keys (for a file with a base).
+PARTIAL = "Partial"
+
+
+def _partial_with_base(schema: dict[str, Any], own: tuple[str, ...]) -> None:
+    """A file with ``base =`` may leave out any key its base gives: its sections are
+    checked against copies of their schemas without ``required`` (keys, types, bounds
+    and no unknown key still hold), and the required keys apply only to a file without
+    a base (``if``/``else``). Its own tables (``own``: [expect], [study]) stay whole."""
+    definitions = schema["$defs"]
+    for name, definition in list(definitions.items()):
+        partial = _renamed_refs(copy.deepcopy(definition))
+        partial.pop("required", None)
+        definitions[name + PARTIAL] = partial
+    properties = schema["properties"]
+    strict = {k: v for k, v in properties.items() if k not in own and _refers(v)}
+    for key in strict:
+        properties[key] = _renamed_refs(copy.deepcopy(properties[key]))
+    schema["if"] = {"required": ["base"]}
+    schema["else"] = {"required": schema.pop("required", []), "properties": strict}
+
+
+def _refers(node: Any) -> bool:
+    """Does ``node`` name a section's schema anywhere inside?"""
+    if isinstance(node, dict):
+        return "$ref" in node or any(_refers(v) for v in node.values())
+    return isinstance(node, list) and any(_refers(v) for v in node)
+
+
+def _renamed_refs(node: Any) -> Any:
+    """``node`` with every ``$ref`` to a section's schema turned to its partial copy."""
+    if isinstance(node, dict):
+        return {
+            k: (v + PARTIAL if k == "$ref" and isinstance(v, str) else _renamed_refs(v))
+            for k, v in node.items()
+        }
+    if isinstance(node, list):
+        return [_renamed_refs(v) for v in node]
+    return node
+
+
+def strict_definition(schema: dict[str, Any], ref: str) -> dict[str, Any]:
+    """The schema a ``$ref`` names, its required keys included (a partial copy's
+    original)."""
+    name = ref.rsplit("/", 1)[1]
+    definitions = schema.get("$defs", {})
+    if name.endswith(PARTIAL) and name[: -len(PARTIAL)] in definitions:
+        name = name[: -len(PARTIAL)]
+    return definitions[name]
 
 
 def _tidy(node: Any) -> None:
@@ -183,14 +241,15 @@ def key_rows(schema: dict[str, Any]) -> list[KeyRow]:
                 continue
             rows.append(_row(key, value | target, name in required))
 
-    walk(schema, "", set(schema.get("required", [])))
+    walk(schema, "", set(schema.get("else", {}).get("required", schema.get("required", []))))
     return rows
 
 
 def _resolve(node: dict[str, Any], definitions: dict[str, Any]) -> dict[str, Any]:
     ref = node.get("$ref")
     if isinstance(ref, str) and ref.startswith(_REF):
-        return {**definitions[ref[len(_REF) :]], **{k: v for k, v in node.items() if k != "$ref"}}
+        target = strict_definition({"$defs": definitions}, ref)
+        return {**target, **{k: v for k, v in node.items() if k != "$ref"}}
     return node
 
 

@@ -24,7 +24,7 @@ from pydantic import BaseModel
 
 from mdcalc.errors import InputError
 from mdcalc.input.casefile import CaseText, validate
-from mdcalc.input.schema import unit_in
+from mdcalc.input.schema import strict_definition, unit_in
 
 #: The column where a value's comment starts (longer lines put it two spaces after).
 COMMENT_COLUMN = 34
@@ -163,11 +163,12 @@ class _Writer:
         out: list[str] = []
         root = self.schema
         scalars, tables = self._split(root)
+        shown = {"base": "other_case.toml", **self.extras}  # a case to take keys from
         for key in scalars:
             if key in NOT_SCENE:
                 continue
             out += self._key_line(
-                root["properties"][key], key, self.template, self.extras, (), False,
+                root["properties"][key], key, self.template, shown, (), False,
                 self.template, root,
             )  # fmt: skip
         for key in tables:
@@ -289,7 +290,7 @@ class _Writer:
     def _resolve(self, node: dict[str, Any]) -> dict[str, Any]:
         ref = node.get("$ref")
         if isinstance(ref, str):
-            return {**self.definitions[ref.rsplit("/", 1)[1]], **node, "$ref": None}
+            return {**strict_definition(self.schema, ref), **node, "$ref": None}
         return node
 
 
