@@ -102,3 +102,50 @@ def test_the_schema_lets_a_file_with_a_base_leave_out_keys():
     assert "'mass' is a required property" in messages
     bad = {"base": "lecture.toml", "vehicle": {"mass": -1.0, "mas": 1.0}}
     assert len(list(check.iter_errors(bad))) >= 2  # bounds and unknown keys still hold
+
+
+def test_a_base_path_that_cannot_be_read_is_exit_2(cli, tmp_path):
+    (tmp_path / "long.toml").write_text(f'base = "{"a" * 5000}"\n', "utf-8")
+    (tmp_path / "loop1").symlink_to(tmp_path / "loop2")
+    (tmp_path / "loop2").symlink_to(tmp_path / "loop1")
+    (tmp_path / "loop.toml").write_text('base = "loop1"\n', "utf-8")
+    for name in ("long.toml", "loop.toml"):
+        result = cli("braking", tmp_path / name)
+        assert result.exit_code == 2, result.stderr
+        assert ":1: error: base: cannot read" in result.stderr
+        assert_no_traceback(result)
+
+
+def test_a_bad_value_from_the_base_is_named_in_the_base(cli, tmp_path):
+    base = tmp_path / "base.toml"
+    base.write_text(
+        'problem = "braking"\n[vehicle]\nmass = -1500.0\ninitial_speed_kmh = 100.0\n'
+        '[road]\nsurface = "dry-asphalt"\n',
+        "utf-8",
+    )
+    child = tmp_path / "child.toml"
+    child.write_text('base = "base.toml"\n[vehicle]\ninitial_speed = 20.0\n', "utf-8")
+    result = cli("braking", child)
+    assert result.exit_code == 2
+    assert f"vehicle.mass: got -1500.0; must be > 0 kg (set in its base {base}:3)" in (
+        result.stderr
+    )
+    mismatch = tmp_path / "mm.toml"
+    mismatch.write_text('# a hoist?\nproblem = "hoist"\nbase = "base.toml"\n', "utf-8")
+    result = cli("hoist", mismatch)
+    assert result.exit_code == 2 and f"{mismatch}:2: error: problem:" in result.stderr
+
+
+def test_the_schema_keeps_arrays_of_tables_whole_and_quoted_plain_numbers():
+    jsonschema = pytest.importorskip("jsonschema")
+    hoist = jsonschema.Draft202012Validator(problem_schema("hoist"))
+    partial_item = {"base": "crane.toml", "drive": {"shafts": [{"name": "gear"}]}}
+    assert list(hoist.iter_errors(partial_item))  # an array from a base is replaced whole
+    braking = jsonschema.Draft202012Validator(problem_schema("braking"))
+    data = tomllib.loads(LECTURE.read_text("utf-8"))
+    data["road"] = {"adhesion": "0.8", "resistance": "1.5 %"}  # pure numbers, quoted
+    assert list(braking.iter_errors(data)) == []
+    mechanism = jsonschema.Draft202012Validator(problem_schema("mechanism"))
+    press = tomllib.loads((CASES / "mechanism" / "crank_press.toml").read_text("utf-8"))
+    press["parameters"] = {name: "400" for name in press["parameters"]}
+    assert list(mechanism.iter_errors(press)) == []

@@ -128,6 +128,8 @@ TIME = re.compile(r"\d[\d.]*(?:e[-+]?\d+)?\s?(?:µs|ms|ns)\b")
 #: rates are masked too; elsewhere a number in s is a result.
 TIMED_LINE = re.compile(r"\d (?:files|samples|points)/s\b|\bin all:")
 SECONDS_OR_RATE = re.compile(r"\d[\d.,]*(?:e[-+]?\d+)?\s?(?:(?:files|samples|points)/s|s)\b")
+#: How many worker processes ran: one per core by default.
+JOBS = re.compile(r"\b\d+ jobs?\b")
 #: Where a study's or sweep's blocks ran is decided by timing a probe (the numbers
 #: are the same either way).
 SHIPPED = re.compile(r", blocks on [\w .:/-]+?(?:, \d+ jobs)?$")
@@ -155,6 +157,7 @@ def masked(text: str) -> list[str]:
         if TIMED_LINE.search(line):
             line = SECONDS_OR_RATE.sub("T", line)
         line = SHIPPED.sub("", SECONDS.sub(r"\1: T", TIME.sub("T", line)))
+        line = JOBS.sub("N jobs", line)
         out.append(RULES.sub(" ", line).strip())
     while out and not out[-1]:
         out.pop()
@@ -216,6 +219,7 @@ def test_the_masks_keep_numbers_and_drop_run_times():
     assert masked('"seconds": 0.25,') == masked('"seconds": 1.5e-06,')
     run = "mdcalc run: 2 case files in 0.576 s (3.471 files/s, process pool, 2 jobs)"
     assert masked(run) == masked(run.replace("0.576 s (3.471", "0.425 s (4.702"))
+    assert masked(run) == masked(run.replace("2 jobs", "4 jobs"))
     study = "braking, 100,000 samples (lhs, seed 2026), vectorized kernel"
     assert masked(study + ", blocks on process pool, 2 jobs") == masked(study)
     assert masked("Stopping time 5.0385 s") != masked("Stopping time 5.0386 s")

@@ -293,3 +293,51 @@ def test_a_case_file_that_names_no_problem_is_exit_2(cli, tmp_path, text, says):
     assert result.exit_code == 2
     assert result.stderr.startswith(f"{path}: error: ") and says in result.stderr
     assert_no_traceback(result)
+
+
+def test_the_commands_the_case_form_leaves_alone_are_the_apps():
+    from mdcalc.cli.app import app
+    from mdcalc.cli.launch import COMMANDS
+    from mdcalc.problems import PROBLEMS
+
+    names = {c.name for c in app.registered_commands} - set(PROBLEMS)
+    assert names == set(COMMANDS)
+
+
+def test_a_file_named_like_a_command_does_not_take_its_place(cli, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "check").write_text("not a case\n", "utf-8")
+    result = cli("check", LECTURE)
+    assert result.exit_code == 0, result.stderr
+    assert "passed" in result.stdout
+
+
+def test_a_pipe_named_as_a_case_is_refused_not_read(cli, tmp_path):
+    import os
+
+    fifo = tmp_path / "f.toml"
+    os.mkfifo(fifo)
+    result = cli(fifo)  # would block on open() if it were read
+    assert result.exit_code == 2
+    assert "FIFO" in result.stderr
+
+
+def test_a_study_written_with_dotted_keys_is_a_study(cli, tmp_path):
+    case = tmp_path / "dotted.toml"
+    case.write_text(
+        'problem = "braking"\nstudy.samples = 50\n[vehicle]\nmass = 1500.0\n'
+        'initial_speed_kmh = 100.0\n[road]\nsurface = "dry-asphalt"\n'
+        '[study.inputs."vehicle.mass"]\nnominal = 1500.0\ntol = "±5 %"\n',
+        "utf-8",
+    )
+    result = cli(case, "--json")
+    assert result.exit_code == 0, result.stderr
+    assert json.loads(result.stdout)["kind"] == "study"
+
+
+def test_a_case_form_with_a_broken_base_says_what_the_loader_says(cli, tmp_path):
+    (tmp_path / "a.toml").write_text('base = "b.toml"\n', "utf-8")
+    (tmp_path / "b.toml").write_text('base = "a.toml"\n', "utf-8")
+    result = cli(tmp_path / "a.toml")
+    assert result.exit_code == 2 and "a cycle of bases" in result.stderr
+    assert_no_traceback(result)

@@ -128,28 +128,85 @@ def _valid(problem: str, text: str) -> bool:
     return True
 
 
-@pytest.mark.parametrize("problem", list(PROBLEMS))
-def test_a_commented_key_is_what_its_comment_says(problem):
-    """In a section the starter has, '(optional)' and '(default)' keys uncomment alone,
-    '(instead of X)' ones with X commented out."""
-    text = starter(problem)
+LABEL = re.compile(r"^# (\w+) = .*\(([^()]*(?:\([^()]*\))?[^()]*)\)$")
+
+
+def _section_lines(lines: list[str], number: int) -> range:
+    """The lines of the table that holds line ``number`` (from its header on)."""
+    start = max((i for i in range(number + 1) if re.match(r"^\[", lines[i])), default=0)
+    end = next(
+        (i for i in range(start + 1, len(lines)) if re.match(r"^#? ?\[", lines[i])), len(lines)
+    )
+    return range(start, end)
+
+
+def _line_of(lines: list[str], span: range, key: str, commented: bool) -> int:
+    lead = "# " if commented else ""
+    return next(i for i in span if lines[i].startswith(f"{lead}{key} = "))
+
+
+def _uncommented(changed: list[str], lines: list[str], at: int) -> None:
+    """Uncomment the key on line ``at``, and the rows of its array when it spans lines."""
+    changed[at] = lines[at][2:]
+    if re.match(r"^# \w+ = \[\s*(#.*)?$", lines[at]):
+        row = at + 1
+        while not lines[row].startswith("# ]"):
+            changed[row] = lines[row][2:]
+            row += 1
+        changed[row] = lines[row][2:]
+
+
+def _check_labels(problem: str, text: str, only: set[int] | None = None) -> int:
+    """Every '# key = ... (label)' line of an active table does what its label says:
+    '(optional)' and '(default)' uncomment alone; '(instead of X)' with X commented
+    out; '(optional; not with X)' alone but not with X; '(optional, with X, Y)' with
+    X and Y; '(with X, instead of Y)' with X and with Y commented out."""
     lines = text.splitlines()
     checked = 0
     for number, line in enumerate(lines):
-        match = re.match(r"^# (\w+) = .*\((optional|default|instead of (\w+))\)$", line)
-        if not match or match.group(1) == "base":  # read with the file (test_base.py)
-            continue
+        match = LABEL.match(line)
+        if not match or match.group(1) == "base" or (only is not None and number not in only):
+            continue  # (base is read with the file: test_base.py)
+        label = match.group(2)
+        span = _section_lines(lines, number)
         changed = list(lines)
-        changed[number] = line[2:]
-        if match.group(3):
-            other = match.group(3)
-            start = max(i for i in range(number + 1) if lines[i].startswith("["))
-            at = next(i for i in range(start, len(lines))
-                      if re.match(rf"^{other} = ", lines[i]))  # fmt: skip
-            changed[at] = "# " + lines[at]
-        assert _valid(problem, "\n".join(changed)), line
+        _uncommented(changed, lines, number)
+        words = re.match(r"(?:optional, )?(?:with (.+?))?(?:, )?(?:instead of (.+))?$", label)
+        if label in ("optional", "default"):
+            assert _valid(problem, "\n".join(changed)), line
+        elif label.startswith("optional; not with "):
+            assert _valid(problem, "\n".join(changed)), line
+            for other in label.removeprefix("optional; not with ").split(", "):
+                at = _line_of(lines, span, other, commented=True)
+                both = list(changed)
+                _uncommented(both, lines, at)
+                assert not _valid(problem, "\n".join(both)), (line, other)
+        elif words and (words.group(1) or words.group(2)):
+            for other in (words.group(1) or "").split(", ") if words.group(1) else []:
+                _uncommented(changed, lines, _line_of(lines, span, other, commented=True))
+            for other in (words.group(2) or "").split(", ") if words.group(2) else []:
+                at = _line_of(lines, span, other, commented=False)
+                changed[at] = "# " + lines[at]
+            assert _valid(problem, "\n".join(changed)), line
+        else:
+            continue  # "another form; alone, mdcalc says: ..." promises nothing more
         checked += 1
-    assert checked >= 1 or problem in ("mine-hoist",)
+    return checked
+
+
+@pytest.mark.parametrize("problem", list(PROBLEMS))
+def test_a_commented_key_is_what_its_comment_says(problem):
+    """The labels of the commented keys, in the starter's tables and in each optional
+    section uncommented (with what it needs)."""
+    text = starter(problem)
+    checked = _check_labels(problem, text)
+    found = blocks(text)
+    for numbers, needs in found.values():
+        lines = list(numbers)
+        for need in needs:
+            lines += found[f"[{need}]"][0]
+        checked += _check_labels(problem, uncomment(text, lines), only=set(numbers))
+    assert checked >= 2, checked
 
 
 def test_minimal_and_stdout(cli, tmp_path):
@@ -202,3 +259,11 @@ def test_taplo_checks_every_starter_and_finds_mistakes(cli, tmp_path):
     negative.write_text(text.replace("drum_inertia = 479150.0", "drum_inertia = -1.0"), "utf-8")
     done = taplo_check(negative)
     assert done.returncode != 0 and "minimum" in done.stderr.lower()
+
+
+def test_a_link_where_the_schema_would_go_is_left_alone(cli, tmp_path):
+    link = tmp_path / schema_file_name("hoist")
+    link.symlink_to(tmp_path / "nowhere.json")
+    result = cli("new", "hoist", "-o", tmp_path / "c.toml")
+    assert result.exit_code == 0, result.stderr
+    assert link.is_symlink() and not link.exists()

@@ -14,7 +14,7 @@ module; the command bodies both use are in :mod:`mdcalc.cli.command`.
 
 from collections.abc import Callable
 from pathlib import Path
-from typing import Annotated
+from typing import Annotated, Any
 
 import typer
 
@@ -55,15 +55,30 @@ app = typer.Typer(
 
 JsonOption = Annotated[bool, typer.Option("--json", help="Write the results as JSON.")]
 DebugOption = Annotated[bool, typer.Option("--debug", help="Show the traceback of a bug.")]
+
+
+def _time_limit(what: str) -> Any:
+    """The --time-limit option, its help saying what it stops."""
+    return typer.Option("--time-limit", min=0.0, metavar="SECONDS", help=f"{what} 0: no limit.")
+
+
 TimeLimitOption = Annotated[
     float,
-    typer.Option(
-        "--time-limit",
-        min=0.0,
-        metavar="SECONDS",
-        help="Stop a case (a sweep point) after this long: a slow method is skipped, "
-        "a scene that cannot finish is no answer (exit 3). 0: no limit.",
+    _time_limit(
+        "Stop the case after this long: a slow method is skipped, a scene that cannot "
+        "finish is no answer (exit 3)."
     ),
+]
+EachCaseTimeLimitOption = Annotated[
+    float,
+    _time_limit(
+        "Stop each case file after this long: a slow method is skipped, a scene that "
+        "cannot finish is no answer."
+    ),
+]
+PointTimeLimitOption = Annotated[
+    float,
+    _time_limit("Stop each point run one by one after this long (it has no answer then)."),
 ]
 
 
@@ -234,10 +249,11 @@ def check_command(
         list[Path], typer.Argument(help="Case files or folders.", autocompletion=complete_case)
     ],
     jobs: JobsOption = 1,
-    time_limit: TimeLimitOption = DEFAULT_TIME_LIMIT,
+    time_limit: EachCaseTimeLimitOption = DEFAULT_TIME_LIMIT,
     debug: DebugOption = False,
 ) -> None:
-    """Run every case file that has an [expect] table; exit 1 if any value is off."""
+    """Run every case file that has an [expect] table; exit 1 if any value is off, 2 if
+    a file cannot be read or validated."""
 
     def body() -> int:
         from rich.table import Table
@@ -294,7 +310,7 @@ def run_command(
             metavar="DIR",
         ),
     ] = None,
-    time_limit: TimeLimitOption = DEFAULT_TIME_LIMIT,
+    time_limit: EachCaseTimeLimitOption = DEFAULT_TIME_LIMIT,
     scheduler: SchedulerOption = None,
     debug: DebugOption = False,
 ) -> None:
@@ -326,7 +342,7 @@ def sweep_command(
         Path | None, typer.Option("--out", help="Write the table to FILE.csv or FILE.json.")
     ] = None,
     jobs: PointJobsOption = 0,
-    time_limit: TimeLimitOption = DEFAULT_TIME_LIMIT,
+    time_limit: PointTimeLimitOption = DEFAULT_TIME_LIMIT,
     scheduler: SchedulerOption = None,
     debug: DebugOption = False,
 ) -> None:

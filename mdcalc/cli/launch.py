@@ -18,6 +18,7 @@ is read as ``mdcalc PROBLEM CASE.toml [options]`` and goes the same ways
 
 import os
 import re
+import stat
 import sys
 
 from mdcalc.cli.startup import prepare
@@ -68,33 +69,41 @@ def direct_batch(argv: list[str]) -> tuple[list[str], int, bool, bool] | None:
     return (paths, jobs, as_json, debug) if paths else None
 
 
+#: The commands that are not problems: a file of the same name does not take their
+#: place (tests/test_launch.py checks the list against the typer app).
+COMMANDS = ("check", "run", "sweep", "study", "new", "schema")
+
+
 def named_problem(argv: list[str]) -> list[str] | str | None:
     """``argv`` with the command the case file names put before it, when ``argv``
     starts with a case file instead of a command (``mdcalc case.toml --json``); an
     error message when that file names no problem (or none of mdcalc's); None for a
-    command line that starts with a command (or an option)."""
+    command line that starts with a command (or an option).
+
+    A regular file whose own lines name its problem (``problem = "..."`` before its
+    first table, no ``base``) is read without a TOML parser; any other (a base, a pipe,
+    no such line) is read by the case loader, whose messages are the commands'."""
     from mdcalc.problems import PROBLEMS
 
-    if not argv or argv[0].startswith("-") or argv[0] in PROBLEMS or _completing():
+    if not argv or argv[0].startswith("-") or _completing():
         return None
     first = argv[0]
+    if first in PROBLEMS or first in COMMANDS:
+        return None
     if not first.endswith(".toml") and not os.path.isfile(first):
-        return None  # a command, or a misspelt one: typer says which
+        return None  # a misspelt command: typer says which
     try:
-        name, base, study = _top_lines(first)
+        regular = stat.S_ISREG(os.stat(first).st_mode)
     except FileNotFoundError:
         return f"{first}: error: no such file"
     except OSError as exc:
         return f"{first}: error: cannot read: {exc.strerror}"
-    at = first
-    for _ in range(8):  # a file without problem = takes its base's (read_case's rule)
-        if name is not None or base is None:
-            break
-        at = base if os.path.isabs(base) else os.path.join(os.path.dirname(at), base)
-        try:
-            name, base, _ = _top_lines(at)
-        except OSError:
-            return f"{first}: error: base: no such case file: {at}"
+    name, base, study = _top_lines(first) if regular else (None, None, False)
+    if name is None or base is not None:
+        loaded = _loaded(first)
+        if isinstance(loaded, str):
+            return loaded
+        name, study = loaded
     allowed = ", ".join(PROBLEMS)
     if name is None:
         return (
@@ -106,12 +115,31 @@ def named_problem(argv: list[str]) -> list[str] | str | None:
     return ["study" if study else name, *argv]
 
 
+def _loaded(path: str) -> tuple[str | None, bool] | str:
+    """(problem, is a study) as the case loader reads the file (its base followed), or
+    the loader's message."""
+    from pathlib import Path
+
+    from mdcalc.errors import InputError
+    from mdcalc.input.casefile import read_case
+
+    try:
+        case = read_case(Path(path))
+    except InputError as exc:
+        return str(exc)
+    problem = case.data.get("problem")
+    return (problem if isinstance(problem, str) else None), "study" in case.data
+
+
 def _top_lines(path: str) -> tuple[str | None, str | None, bool]:
     """(problem, base, has a [study] table) as a case file's own lines say, read
     without a TOML parser: ``problem = "..."`` and ``base = "..."`` before the first
-    table."""
-    with open(path, encoding="utf-8", errors="replace") as handle:
-        text = handle.read(1 << 20)
+    table; ``[study]``, ``[study.inputs...]`` or a top-level ``study.`` key."""
+    try:
+        with open(path, encoding="utf-8", errors="replace") as handle:
+            text = handle.read(1 << 20)
+    except OSError:
+        return None, None, False  # the loader says why
     found: dict[str, str] = {}
     tables, study = False, False
     for line in text.splitlines():
@@ -123,9 +151,12 @@ def _top_lines(path: str) -> tuple[str | None, str | None, bool]:
         match = _TOP_LINE.match(stripped)
         if match and not tables:
             found.setdefault(match.group(1), match.group(2))
+        study = study or (not tables and _STUDY_KEY.match(stripped) is not None)
     return found.get("problem"), found.get("base"), study
 
 
+#: A top-level key of the [study] table written dotted or inline (``study.samples``).
+_STUDY_KEY = re.compile(r"""^(study|"study"|'study')\s*[.=]""")
 #: A top-level line that names a case file's problem or its base.
 _TOP_LINE = re.compile(r"""^(problem|base)\s*=\s*["']([^"']*)["']\s*(#.*)?$""")
 

@@ -5,6 +5,7 @@ of ``mdcalc new`` (a starter case beside its schema; :mod:`mdcalc.input.starter`
 from __future__ import annotations
 
 import json
+import os
 from pathlib import Path
 from typing import Any
 
@@ -116,7 +117,7 @@ def run_new(problem: str, output: Path | None, minimal: bool, force: bool) -> in
     print_error(f"wrote {output}")
     if not minimal:
         beside = output.parent / schema_file_name(problem)
-        if not beside.exists():
+        if not os.path.lexists(beside):  # whatever is there (a link too) is left alone
             write_atomic(beside, schema_text(problem), replace=False)
             print_error(f"wrote {beside} (for an editor: Taplo, Even Better TOML)")
     return 0

@@ -48,6 +48,14 @@ class CaseText:
         self._lines: dict[tuple[str | int, ...], int] | None = None  # made when asked for
         #: Quantity strings converted by the last :func:`validate` of this case.
         self.conversions: list[Conversion] = []
+        #: The cases of its ``base =`` chain, nearest first (:func:`read_case`).
+        self.bases: list[CaseText] = []
+
+    def written(self) -> dict[str, int]:
+        """The line of each key path the file itself writes, by its dotted name."""
+        if self._lines is None:
+            self._lines = _key_lines(self.text)
+        return {dotted(loc): line for loc, line in self._lines.items()}
 
     def line_of(self, loc: tuple[str | int, ...]) -> int | None:
         """Line of the key at ``loc``, or of its nearest enclosing table."""
@@ -71,7 +79,7 @@ def read_case(path: Path) -> CaseText:
     the file does not write has no line in a message)."""
     case = _read_one(path)
     if "base" in case.data:
-        case.data = _with_base(case, [path])
+        case.data = _with_base(case, [path], case.bases)
     return case
 
 
@@ -81,29 +89,45 @@ MAX_BASES = 8
 NOT_INHERITED = ("expect", "saved", "study", "base")
 
 
-def _with_base(case: CaseText, chain: list[Path]) -> dict[str, Any]:
-    """``case.data`` over the case its ``base`` names (see :func:`read_case`)."""
+def _with_base(case: CaseText, chain: list[Path], bases: list[CaseText]) -> dict[str, Any]:
+    """``case.data`` over the case its ``base`` names (see :func:`read_case`); each case
+    of the chain is added to ``bases``."""
     base = case.data["base"]
     line = case.line_of(("base",))
     if not isinstance(base, str) or not base.strip():
         raise InputError(case.path, [Problem("a path to a case file, as a string", "base", line)])
     target = Path(base) if Path(base).is_absolute() else case.path.parent / base
-    seen = [p.resolve() for p in chain]
-    if target.resolve() in seen:
+    try:
+        seen = [p.resolve() for p in chain]
+        cycle = target.resolve() in seen
+        there = target.is_file()
+    except (OSError, RuntimeError) as exc:  # a name too long, a loop of symbolic links
+        why = exc.strerror if isinstance(exc, OSError) and exc.strerror else str(exc)
+        shown = base if len(base) <= 80 else f"{base[:60]}…({len(base)} characters)"
+        problem = Problem(f"cannot read {shown!r}: {why}", "base", line)
+        raise InputError(case.path, [problem]) from None
+    if cycle:
         names = " -> ".join(str(p) for p in [*chain, target])
         raise InputError(case.path, [Problem(f"a cycle of bases: {names}", "base", line)])
     if len(chain) >= MAX_BASES:
         problem = Problem(f"more than {MAX_BASES} files in a chain of bases", "base", line)
         raise InputError(case.path, [problem])
-    if not target.is_file():
+    if not there:
         problem = Problem(f"no such case file: {target}", "base", line)
         raise InputError(case.path, [problem])
     parent = _read_one(target)
-    inherited = _with_base(parent, [*chain, target]) if "base" in parent.data else parent.data
+    bases.append(parent)
+    inherited = (
+        _with_base(parent, [*chain, target], bases) if "base" in parent.data else parent.data
+    )
     own = {k: v for k, v in case.data.items() if k != "base"}
     mine, theirs = own.get("problem"), inherited.get("problem")
     if mine is not None and theirs is not None and mine != theirs:
-        problem = Problem(f"{mine!r}, but its base {target} is a {theirs!r} case", "problem")
+        problem = Problem(
+            f"{mine!r}, but its base {target} is a {theirs!r} case",
+            "problem",
+            case.line_of(("problem",)),
+        )
         raise InputError(case.path, [problem])
     return _merged({k: v for k, v in inherited.items() if k not in NOT_INHERITED}, own)
 
@@ -186,9 +210,23 @@ def validate(model: type[M], case: CaseText) -> M:
         errors = _one_union_member(model, exc.errors())
         found = [_problem_from_error(model, case, err) for err in errors]
         problems += [p for p in found if p.path not in failed]
+    if problems and case.bases:
+        problems = [_blamed_on_base(case, p) for p in problems]
     if problems:
         raise InputError(case.path, problems) from None
     return validated
+
+
+def _blamed_on_base(case: CaseText, problem: Problem) -> Problem:
+    """A problem with a key the file does not write but a base does: named there."""
+    if not problem.path or problem.path in case.written():
+        return problem
+    for base in case.bases:
+        line = base.written().get(problem.path)
+        if line is not None:
+            where = f"{problem.message} (set in its base {base.path}:{line})"
+            return Problem(where, problem.path, None)
+    return problem
 
 
 def _has_strings(data: dict[str, Any]) -> bool:

@@ -33,6 +33,8 @@ from pydantic import BaseModel
 DIALECT = "https://json-schema.org/draft/2020-12/schema"
 #: A quantity string: a number (no spaces, no comma), then a unit.
 QUANTITY_PATTERN = r"^\s*[-+]?(\d+(\.\d*)?|\.\d+)([eE][-+]?\d+)?\s*[^\s\d.,;].*$"
+#: For a pure number a quoted number alone is taken too ("0.8", "5 %").
+NUMBER_PATTERN = r"^\s*[-+]?(\d+(\.\d*)?|\.\d+)([eE][-+]?\d+)?\s*([^\s\d.,;].*)?$"
 _UNIT = re.compile(r"\[([^\[\]]*)\]\s*$")
 _REF = "#/$defs/"
 
@@ -113,10 +115,17 @@ def _refers(node: Any) -> bool:
 
 
 def _renamed_refs(node: Any) -> Any:
-    """``node`` with every ``$ref`` to a section's schema turned to its partial copy."""
+    """``node`` with every ``$ref`` to a section's schema turned to its partial copy,
+    but in an array's items: an array from the base is replaced whole, never merged."""
     if isinstance(node, dict):
         return {
-            k: (v + PARTIAL if k == "$ref" and isinstance(v, str) else _renamed_refs(v))
+            k: (
+                v + PARTIAL
+                if k == "$ref" and isinstance(v, str)
+                else v
+                if k == "items"
+                else _renamed_refs(v)
+            )
             for k, v in node.items()
         }
     if isinstance(node, list):
@@ -161,19 +170,22 @@ def _tidy(node: Any) -> None:
         if isinstance(node.get(key), dict | list):
             _tidy(node[key])
     if "description" in node and _converts(node["description"]):
-        _take_quantities(node)
+        plain = unit_in(node["description"]) in ("", "-")
+        _take_quantities(node, NUMBER_PATTERN if plain else QUANTITY_PATTERN)
 
 
-def _take_quantities(node: dict[str, Any]) -> None:
-    """A key's numbers, alone, in lists or in the alternatives of its type, may be
-    quantity strings (what mdcalc converts to the key's unit)."""
+def _take_quantities(node: dict[str, Any], pattern: str) -> None:
+    """A key's numbers, alone, in lists, in a table of named numbers or in the
+    alternatives of its type, may be quantity strings (what mdcalc converts to the
+    key's unit)."""
     if node.get("type") in ("number", "integer"):
         node["type"] = [node["type"], "string"]
-        node["pattern"] = QUANTITY_PATTERN
+        node["pattern"] = pattern
     for option in node.get("anyOf", []):
-        _take_quantities(option)
-    if isinstance(node.get("items"), dict):
-        _take_quantities(node["items"])
+        _take_quantities(option, pattern)
+    for key in ("items", "additionalProperties"):
+        if isinstance(node.get(key), dict):
+            _take_quantities(node[key], pattern)
 
 
 def _converts(description: str | None) -> bool:

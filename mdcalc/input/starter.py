@@ -135,9 +135,18 @@ class _Writer:
         the section's keys that have no default); with the other commented keys of a
         form (``shown``), instead of some; else what the validation says of it alone."""
         section = _get(context, where)
+        shown = {k: v for k, v in shown.items() if not _table(v)}  # keys, not sub-tables
         alone = self.problems(_with(context, where, {**section, key: value}))
         if not alone:
-            return "optional"
+            clash = [
+                other
+                for other, its in shown.items()
+                if other != key
+                and other not in section
+                and self.valid(_with(context, where, {**section, other: its}))
+                and not self.valid(_with(context, where, {**section, key: value, other: its}))
+            ]
+            return f"optional; not with {', '.join(clash)}" if clash else "optional"
         for other in section:
             rest = {k: v for k, v in section.items() if k != other}
             if self.valid(_with(context, where, {**rest, key: value})):
@@ -156,7 +165,13 @@ class _Writer:
                 if self.valid(_with(context, where, {**base, key: value, **members})):
                     with_ = "with " + ", ".join(members)
                     return f"{with_}, instead of {', '.join(instead)}" if instead else with_
-        return f"optional; alone: {alone[0]}"
+        others = [k for k in shown if k != key and k not in section]
+        for size in (1, 2):
+            for combo in itertools.combinations(others, size):
+                given = {k: shown[k] for k in combo}
+                if self.valid(_with(context, where, {**section, key: value, **given})):
+                    return "optional, with " + ", ".join(combo)
+        return f"another form; alone, mdcalc says: {alone[0]}"
 
     # ------------------------------------------------------------------ text
     def lines(self) -> list[str]:
