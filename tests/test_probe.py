@@ -1,8 +1,8 @@
 """Every run ends with a plain answer (issue 20, item 5): one shipped case per problem,
-each numeric field set in turn to 1e-12, 1e12, 1e17 and the edges of its validated
-bounds, run with a small --time-limit. Every run exits 0, 2 or 3 (never 70, never a
-hang), says why in one stderr line when it is 2 or 3, writes no NaN or infinity, and
-comes back within its budget + 1 s.
+each numeric field set in turn to 1e-12, 1e12, 1e17, 5e-324, 2.2e-308, 1e-300 and the
+edges of its validated bounds, run with a small --time-limit. Every run exits 0, 2 or
+3 (never 70, never a hang), says why in one stderr line when it is 2 or 3, writes no
+NaN or infinity, and comes back within its budget + 1 s.
 
 Fields, bounds and the values to try are read from each problem's ``Case`` model
 (``tests/test_fuzz.py``'s reader), so a field or a problem added later is probed
@@ -38,11 +38,15 @@ PROBE_CASES = {
 #: The probe's time limit per run [s]; a run must be back within BUDGET + 1 s.
 BUDGET = 1.0
 EXTREMES = (1e-12, 1e12, 1e17)
+#: A subnormal float, the smallest normal one and one a few products from underflow
+#: (issue 33, item 7): refused by the models' floor (exit 2), never exit 70.
+TINY = (5e-324, 2.2e-308, 1e-300)
 
 
 def values_to_try(here: Node) -> list[float | int]:
-    """1e-12, 1e12, 1e17 and just inside each finite bound of the field."""
-    out: list[float] = list(EXTREMES)
+    """1e-12, 1e12, 1e17, the tiny values and just inside each finite bound of the
+    field."""
+    out: list[float] = list(EXTREMES) + ([] if here.integer else list(TINY))
     if here.lo > -LIMIT:
         out.append(math.nextafter(here.lo, math.inf) if here.lo_open else here.lo)
         if here.lo_open and here.lo == 0.0:

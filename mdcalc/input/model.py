@@ -10,7 +10,7 @@ squaring it would overflow inside a solver. Field descriptions end with the unit
 
 from __future__ import annotations
 
-from typing import Any, get_args
+from typing import Any, ClassVar, get_args
 
 from pydantic import (
     BaseModel,
@@ -25,6 +25,11 @@ from pydantic import (
 #: scenes in ``cases/`` use 6e12 N/m; 1e18 leaves room and keeps products of a
 #: few inputs far from float overflow (about 1.8e308).
 MAGNITUDE_LIMIT = 1e18
+#: The smallest magnitude of any number but 0 in a case's scene (SI units), the
+#: ceiling's mirror: a subnormal float (5e-324, 2.2e-308) or one a few products from
+#: underflow (1e-300) is no machine's quantity, and LAPACK and the solvers' own
+#: checks fail on it instead of answering. Expected results ([expect]) may be smaller.
+MAGNITUDE_FLOOR = 1e-18
 
 
 class FieldError(ValueError):
@@ -43,16 +48,20 @@ class CaseModel(BaseModel):
         strict=True, allow_inf_nan=False, extra="forbid", frozen=True, defer_build=True
     )
 
+    #: Does the floor (MAGNITUDE_FLOOR) hold in this section? Not for expected results.
+    _magnitude_floor: ClassVar[bool] = True
+
     @field_validator("*", mode="after")
     @classmethod
     def _within_magnitude_limit(cls, value: Any, info: ValidationInfo) -> Any:
         if info.field_name != "saved":  # results of an earlier run: not read
-            _check_magnitude(value, ())
+            _check_magnitude(value, (), cls._magnitude_floor)
         return value
 
 
-def _check_magnitude(value: Any, loc: tuple[str | int, ...]) -> None:
-    """Raise :class:`FieldError` at the first number beyond ±MAGNITUDE_LIMIT."""
+def _check_magnitude(value: Any, loc: tuple[str | int, ...], floor: bool = True) -> None:
+    """Raise :class:`FieldError` at the first number beyond ±MAGNITUDE_LIMIT, or (with
+    ``floor``) closer to 0 than MAGNITUDE_FLOOR but for 0 itself."""
     if isinstance(value, bool) or isinstance(value, BaseModel):
         return  # sections check their own fields
     if isinstance(value, int | float):
@@ -62,16 +71,24 @@ def _check_magnitude(value: Any, loc: tuple[str | int, ...]) -> None:
                 f"got {value!r}; beyond the range mdcalc computes in "
                 f"(|value| <= {MAGNITUDE_LIMIT:g} in SI units)",
             )
+        if floor and 0 < abs(value) < MAGNITUDE_FLOOR:
+            raise FieldError(
+                loc,
+                f"got {value!r}; closer to 0 than mdcalc computes with (|value| >= "
+                f"{MAGNITUDE_FLOOR:g} in SI units, or 0)",
+            )
     elif isinstance(value, list | tuple):
         for index, item in enumerate(value):
-            _check_magnitude(item, (*loc, index))
+            _check_magnitude(item, (*loc, index), floor)
     elif isinstance(value, dict):
         for key, item in value.items():
-            _check_magnitude(item, (*loc, key))
+            _check_magnitude(item, (*loc, key), floor)
 
 
 class Expectation(CaseModel):
     """One ``[expect]`` entry: ``key = { value = 35.3, rel = 1e-3, source = "..." }``."""
+
+    _magnitude_floor: ClassVar[bool] = False  # a result may be 5e-19 m
 
     value: float | bool | str = Field(description="Expected value of the result")
     rel: float | None = Field(default=None, ge=0, description="Relative tolerance [-]")

@@ -16,7 +16,7 @@ write it:
 
 What it cannot say, the program still checks: the rules between keys (exactly one
 of two alternatives, gears in falling order), the unit of a quantity string, and the
-±1e18 limit of every number.
+range of every number (0, or 1e-18 to 1e18 in magnitude).
 
 Pure: no I/O; pint is asked only whether a description's unit is one it converts to.
 """
