@@ -8,7 +8,7 @@ import re
 
 import pytest
 
-from tests.conftest import CASES, run_script
+from tests.conftest import CASES, assert_no_traceback, run_script
 
 LECTURE = CASES / "braking" / "lecture.toml"
 
@@ -278,14 +278,29 @@ def test_closed_pipe_is_not_an_internal_error():
 
 
 # Valid scenes whose numbers leave double precision (issue 20's probe of shipped cases
-# pushed to 1e-300 or 5e-324, or into exp overflow): exit 3 in one plain line, never
-# exit 70, and no NaN or inf in the output.
+# pushed into exp overflow): exit 3 in one plain line, never exit 70, and no NaN or
+# inf in the output. (Inputs of 1e-300 or 5e-324, which did the same, are now below
+# the models' floor: exit 2, test_a_number_closer_to_0_than_the_floor_is_exit_2.)
 OUT_OF_RANGE = [
-    ("coupling", "extreme/coupling_heavily_damped_pulse.toml", "driven_inertia", "5e-324"),
     ("mechanism", "mechanism/crank_press.toml", "w0", "1e-12"),
-    ("hoist", "hoist/crane.toml", "lifting_speed", "1e-300"),
-    ("hoist", "hoist/crane.toml", "motor_speed_rpm", "1e-300"),
 ]
+
+BELOW_FLOOR = [
+    ("coupling", "extreme/coupling_heavily_damped_pulse.toml", "driven_inertia", "5e-324"),
+    ("hoist", "hoist/crane.toml", "lifting_speed", "1e-300"),
+    ("hoist", "hoist/crane.toml", "motor_speed_rpm", "2.2e-308"),
+]
+
+
+@pytest.mark.parametrize(("problem", "case", "key", "value"), BELOW_FLOOR)
+def test_a_number_closer_to_0_than_the_floor_is_exit_2(cli, write_case, problem, case, key, value):
+    text = (CASES / case).read_text(encoding="utf-8")
+    edited = re.sub(rf"(?m)^{key} = .*$", f"{key} = {value}", text, count=1)
+    assert edited != text
+    result = cli(problem, write_case(edited))
+    assert result.exit_code == 2
+    assert f"{key}: got {float(value)!r}; closer to 0 than mdcalc computes with" in result.stderr
+    assert_no_traceback(result)
 
 
 @pytest.mark.parametrize(("problem", "case", "key", "value"), OUT_OF_RANGE)
@@ -336,13 +351,14 @@ def test_extreme_couplings_answer_the_physics_in_seconds(cli, write_case):
     import math
     import time
 
-    # J2 = 1e-300: β and ζ near 1e151, yet the slow rate β/(ζ + √(ζ² - 1)) → c/α =
-    # 0.3 1/s: a first-order lag, 1 - exp(-0.09). (ζβ squared overflowed: a silent 1.)
+    # J2 = 1e-18 (the models' floor): β and ζ near 1e10, yet the slow rate
+    # β/(ζ + √(ζ² - 1)) → c/α = 0.3 1/s: a first-order lag, 1 - exp(-0.09). (At 1e-300,
+    # before the floor, ζβ squared overflowed: a silent 1.)
     # c = 1e12: β = 1e6 rad/s, ζ = 3000/(2·1e6); the rise's overshoot has died long
     # before the pulse ends: the step peak 1 + exp(-πζ/√(1 - ζ²)).
     zeta = 3000.0 / 2e6
     expected = {
-        ("driven_inertia", 1e-300): -math.expm1(-0.3 * 900.0 / 3000.0),
+        ("driven_inertia", 1e-18): -math.expm1(-0.3 * 900.0 / 3000.0),
         ("stiffness", 1e12): 1.0 + math.exp(-math.pi * zeta / math.sqrt(1.0 - zeta * zeta)),
     }
     for (key, value), factor in expected.items():

@@ -832,7 +832,9 @@ def test_gain_out_of_range_is_an_input_error(cli, tmp_path: Path, clutch: dict[s
         result = cli("clutch", put(tmp_path, case(clutch=clutch)), *extra)
         assert_no_traceback(result)
         assert result.exit_code == 2, result.stdout
-        assert re.search(r"clutch\.(gain|ramp_angle_deg)", result.stderr), result.stderr
+        assert re.search(r"clutch\.(gain|ramp_angle_deg|rolling_radius)", result.stderr), (
+            result.stderr
+        )
 
 
 # ------------------------------------------------------------------------ imports

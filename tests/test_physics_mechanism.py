@@ -27,6 +27,7 @@ Every expected value is computed in this file, never copied from the program:
 from __future__ import annotations
 
 import copy
+import json
 import math
 import re
 from collections.abc import Callable
@@ -920,7 +921,7 @@ def test_bad_input_exit_2_names_the_field(cli, write_case, name: str):
     result = cli("mechanism", path, "--json")
     assert result.exit_code == 2, (result.stdout, result.stderr)
     assert_no_traceback(result)
-    assert result.stdout.strip() == ""
+    assert json.loads(result.stdout)["status"] == "input-error"  # the record of run --json
     lines = ERROR_LINE.findall(result.stderr)
     assert lines, result.stderr
     assert all(file.endswith(path.name) for file, *_ in lines), result.stderr

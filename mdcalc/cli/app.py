@@ -500,7 +500,7 @@ def study_command(
             return EXIT_NO_ANSWER
         return 0
 
-    raise typer.Exit(guard(body, debug))
+    raise typer.Exit(guard(body, debug, str(case) if as_json else None))
 
 
 @app.command("new", short_help="Write a starter case file for PROBLEM, with its schema.")

@@ -49,12 +49,18 @@ def make_console(stderr: bool = False) -> Any:
     return Console(file=stream, width=None if stream.isatty() else PIPE_WIDTH, highlight=False)
 
 
-def guard(body: Callable[[], int], debug: bool) -> int:
-    """Run a command body; map errors to the exit codes of the contract."""
+def guard(body: Callable[[], int], debug: bool, json_case: str | None = None) -> int:
+    """Run a command body; map errors to the exit codes of the contract. With
+    ``json_case`` (a command's ``--json``), an input error or a bug also writes its
+    record on stdout, the one ``run --json`` writes for that file."""
     try:
         return body()
     except InputError as exc:
         print_error(str(exc))
+        if json_case is not None:
+            from mdcalc.output.jsondoc import error_json, input_errors
+
+            print(error_json(json_case, "input-error", input_errors(exc.problems), indent=2))
         return EXIT_INPUT
     except KeyboardInterrupt:
         import signal
@@ -72,6 +78,11 @@ def guard(body: Callable[[], int], debug: bool) -> int:
     except Exception as exc:
         if debug:
             traceback.print_exc()
+        if json_case is not None:
+            from mdcalc.output.jsondoc import error_json
+
+            bug = {"message": f"{type(exc).__name__}: {exc}", "traceback": traceback.format_exc()}
+            print(error_json(json_case, "internal-error", [bug], indent=2))
         print_error(
             f"mdcalc: internal error: {type(exc).__name__}: {exc} -- this is a bug in "
             f"mdcalc {__version__}; please report it with the case file"
@@ -121,11 +132,24 @@ def run_problem(
             for written in write(run, document, force):
                 print_error(f"wrote {written}")
         if report.status != "ok":
-            print_error(f"{case}: error: no answer: {report.message}")
+            if as_json or not _one_stream():  # else the report has just said it
+                print_error(f"{case}: error: no answer: {report.message}")
             return EXIT_NO_ANSWER
         return 0
 
-    return guard(body, debug)
+    return guard(body, debug, str(case) if as_json else None)
+
+
+def _one_stream() -> bool:
+    """Are stdout and stderr the same file (one terminal)? Then a no-answer report's
+    reason, which the report prints, is not printed twice."""
+    import os
+
+    try:
+        out, err = os.fstat(sys.stdout.fileno()), os.fstat(sys.stderr.fileno())
+    except (OSError, ValueError, AttributeError):  # a stream without a file (a test's)
+        return False
+    return (out.st_dev, out.st_ino) == (err.st_dev, err.st_ino)
 
 
 def run_batch(

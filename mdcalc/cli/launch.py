@@ -22,6 +22,7 @@ import stat
 import sys
 
 from mdcalc.cli.startup import prepare
+from mdcalc.errors import InputError, Problem
 
 #: The flags a direct run takes (each a bool, False when absent).
 DIRECT_FLAGS = ("--json", "--debug")
@@ -74,7 +75,7 @@ def direct_batch(argv: list[str]) -> tuple[list[str], int, bool, bool] | None:
 COMMANDS = ("check", "run", "sweep", "study", "new", "schema")
 
 
-def named_problem(argv: list[str]) -> list[str] | str | None:
+def named_problem(argv: list[str]) -> list[str] | InputError | None:
     """``argv`` with the command the case file names put before it, when ``argv``
     starts with a case file instead of a command (``mdcalc case.toml --json``); an
     error message when that file names no problem (or none of mdcalc's); None for a
@@ -95,38 +96,39 @@ def named_problem(argv: list[str]) -> list[str] | str | None:
     try:
         regular = stat.S_ISREG(os.stat(first).st_mode)
     except FileNotFoundError:
-        return f"{first}: error: no such file"
+        return InputError(first, [Problem("no such file")])
     except OSError as exc:
-        return f"{first}: error: cannot read: {exc.strerror}"
+        return InputError(first, [Problem(f"cannot read: {exc.strerror}")])
     name, base, study = _top_lines(first) if regular else (None, None, False)
     if name is None or base is not None:
         loaded = _loaded(first)
-        if isinstance(loaded, str):
+        if isinstance(loaded, InputError):
             return loaded
         name, study = loaded
     allowed = ", ".join(PROBLEMS)
     if name is None:
-        return (
-            f'{first}: error: problem: the file names no problem (problem = "NAME" before '
-            f"its first table); run: mdcalc PROBLEM {first}, PROBLEM one of: {allowed}"
+        message = (
+            'the file names no problem (problem = "NAME" before its first table); run: '
+            f"mdcalc PROBLEM {first}, PROBLEM one of: {allowed}"
         )
+        return InputError(first, [Problem(message, "problem")])
     if name not in PROBLEMS:
-        return f"{first}: error: problem: unknown problem {name!r}; allowed: {allowed}"
+        message = f"unknown problem {name!r}; allowed: {allowed}"
+        return InputError(first, [Problem(message, "problem")])
     return ["study" if study else name, *argv]
 
 
-def _loaded(path: str) -> tuple[str | None, bool] | str:
+def _loaded(path: str) -> tuple[str | None, bool] | InputError:
     """(problem, is a study) as the case loader reads the file (its base followed), or
-    the loader's message."""
+    what the loader found wrong."""
     from pathlib import Path
 
-    from mdcalc.errors import InputError
     from mdcalc.input.casefile import read_case
 
     try:
         case = read_case(Path(path))
     except InputError as exc:
-        return str(exc)
+        return exc
     problem = case.data.get("problem")
     return (problem if isinstance(problem, str) else None), "study" in case.data
 
@@ -180,10 +182,14 @@ def _completing() -> bool:
 def main() -> None:
     prepare()
     named = named_problem(sys.argv[1:])
-    if isinstance(named, str):
+    if isinstance(named, InputError):
         from mdcalc.errors import EXIT_INPUT
 
         print(named, file=sys.stderr)
+        if "--json" in sys.argv[2:]:  # the record run --json writes for such a file
+            from mdcalc.output.jsondoc import error_json, input_errors
+
+            print(error_json(sys.argv[1], "input-error", input_errors(named.problems), 2))
         sys.exit(EXIT_INPUT)
     if named is not None:
         sys.argv[1:] = named

@@ -57,6 +57,8 @@ class Budget:
     cut: list[str] = field(default_factory=list)
     # Deadlines in force, innermost last (a method's share inside the case's).
     deadlines: list[float] = field(default_factory=list)
+    # Inside :func:`paused` (nested: a count): the alarm raises nothing.
+    paused: int = 0
 
     @property
     def deadline(self) -> float:
@@ -88,6 +90,26 @@ def remaining() -> float:
     """Seconds left before the innermost deadline (inf without a budget)."""
     budget = current()
     return math.inf if budget is None else budget.remaining()
+
+
+@contextmanager
+def paused() -> Iterator[None]:
+    """The clock stopped for the body: every deadline in force moves on by the time it
+    took, and the alarm leaves it alone. For the one-time imports a method needs
+    (scipy.integrate: 0.3 s in a fresh process, nothing after): what a scene may
+    spend does not depend on what the process had loaded before it."""
+    budget = current()
+    if budget is None or not budget.deadlines:
+        yield
+        return
+    start = time.perf_counter()
+    budget.paused += 1
+    try:
+        yield
+    finally:
+        budget.paused -= 1
+        took = time.perf_counter() - start
+        budget.deadlines[:] = [d + took for d in budget.deadlines]
 
 
 @contextmanager
@@ -133,7 +155,8 @@ def _alarm(signum: int, frame: Any) -> None:
     budget = current()
     if budget is None or not budget.deadlines:
         return  # stale: the limit it was set for has ended
-    if time.perf_counter() > budget.deadline + GRACE and not _in_finalizer(frame):
+    late = time.perf_counter() > budget.deadline + GRACE and not budget.paused
+    if late and not _in_finalizer(frame) and not _importing(frame):
         raise OverBudget
 
 
@@ -150,6 +173,17 @@ def _in_finalizer(frame: Any) -> bool:
     callbacks = {getattr(callback, "__code__", None) for callback in gc.callbacks}
     while frame is not None:
         if frame.f_code.co_name in _FINALIZERS or frame.f_code in callbacks:
+            return True
+        frame = frame.f_back
+    return False
+
+
+def _importing(frame: Any) -> bool:
+    """Is the interrupted code an import (a method's scipy.integrate, say)? An import
+    stopped half way leaves modules half made; it finishes, and the next check after
+    it (the method's own) stops the work it was for."""
+    while frame is not None:
+        if frame.f_code.co_filename.startswith("<frozen importlib"):
             return True
         frame = frame.f_back
     return False

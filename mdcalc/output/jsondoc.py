@@ -22,6 +22,8 @@ from mdcalc.output.report import (
 def _json_value(value: Value | None) -> Any:
     # Solvers never hand out NaN or inf; this is the last guard, so that the JSON
     # stays valid (json.dumps would write the non-standard token NaN).
+    if isinstance(value, tuple):
+        return [_json_value(v) for v in value]  # a list of numbers: a JSON array
     if isinstance(value, float) and not math.isfinite(value):
         raise ValueError(f"non-finite value {value!r} reached the report")
     return value
@@ -91,6 +93,30 @@ def to_json(report: Report, indent: int | None = 2) -> str:
         "budget": {"time_limit_s": report.time_limit, "cut": list(report.cut)},
     }
     return dumps(document, indent)
+
+
+def error_json(
+    case: str, status: str, errors: list[dict[str, Any]], indent: int | None = None
+) -> str:
+    """The record of a file without a report (``status`` "input-error" or
+    "internal-error"): what ``run --json`` writes for it, and ``--json`` of a problem
+    command. ``errors``: one object a problem (``line``, ``column``, ``path``,
+    ``message``; a bug's ``message`` and ``traceback``)."""
+    document = {
+        "mdcalc": __version__,
+        "format": JSON_FORMAT,
+        "case": case,
+        "status": status,
+        "errors": errors,
+    }
+    return dumps(document, indent)
+
+
+def input_errors(problems: Any) -> list[dict[str, Any]]:
+    """The ``errors`` of an input-error record, from an InputError's problems."""
+    return [
+        {"line": p.line, "column": p.column, "path": p.path, "message": p.message} for p in problems
+    ]
 
 
 def dumps(document: Any, indent: int | None = None) -> str:

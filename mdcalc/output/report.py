@@ -31,7 +31,8 @@ from dataclasses import dataclass, field
 from functools import singledispatch
 from typing import Any, Literal
 
-Value = float | int | str | bool
+#: A result's value; a tuple is a list of numbers (gear ratios), an array in JSON.
+Value = float | int | str | bool | tuple[float, ...]
 Status = Literal["ok", "no-answer"]
 JSON_FORMAT = 1
 
@@ -142,6 +143,8 @@ def format_value(value: Value | None, digits: int = 5) -> str:
         return str(value)
     if isinstance(value, str):
         return value
+    if isinstance(value, tuple):
+        return " / ".join(format_value(v, digits) for v in value)
     if value == 0:
         return "0"
     magnitude = abs(value)

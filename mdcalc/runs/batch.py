@@ -8,7 +8,6 @@ the rest run on.
 
 from __future__ import annotations
 
-import json
 import time
 import traceback
 from collections.abc import Callable, Iterable
@@ -16,7 +15,6 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from mdcalc._version import __version__
 from mdcalc.errors import (
     EXIT_BUG,
     EXIT_INPUT,
@@ -74,14 +72,9 @@ class RunOptions:
 
 
 def _error_json(path: str, status: str, problems: list[dict[str, object]]) -> str:
-    document = {
-        "mdcalc": __version__,
-        "format": 1,
-        "case": path,
-        "status": status,
-        "errors": problems,
-    }
-    return json.dumps(document, ensure_ascii=False, separators=(",", ":"))
+    from mdcalc.output.jsondoc import error_json
+
+    return error_json(path, status, problems)
 
 
 def run_file(path: str, options: RunOptions) -> Outcome:
@@ -121,14 +114,9 @@ def run_file(path: str, options: RunOptions) -> Outcome:
             outcome.text = plain or _rendered(lambda c: render_rich(report, c), options)
     except InputError as exc:
         outcome = Outcome(path, EXIT_INPUT, messages=[str(exc)])
-        outcome.json = _error_json(
-            path,
-            "input-error",
-            [
-                {"line": p.line, "column": p.column, "path": p.path, "message": p.message}
-                for p in exc.problems
-            ],
-        )
+        from mdcalc.output.jsondoc import input_errors
+
+        outcome.json = _error_json(path, "input-error", input_errors(exc.problems))
     except Exception as exc:
         line = f"{path}: internal error: {type(exc).__name__}: {exc}"
         outcome = Outcome(path, EXIT_BUG, messages=[line])

@@ -61,7 +61,7 @@ def within(expectation: Expectation, got: Value | None) -> bool:
         return False
     if isinstance(want, bool) or isinstance(got, bool) or isinstance(want, str):
         return type(want) is type(got) and want == got
-    if isinstance(got, str):
+    if isinstance(got, str | tuple):
         return False
     allowed = max(expectation.abs or 0.0, (expectation.rel or 0.0) * abs(want))
     return abs(float(got) - want) <= allowed

@@ -76,21 +76,17 @@ def report(result: Result) -> Report:
     return Report("acceleration", title, sections, notes, result.status, result.message)
 
 
-def _ratios_text(ratios: tuple[float, ...]) -> str:
-    return " / ".join(f"{u:g}" for u in ratios)
-
-
 def _scene_section(case: Case, scene: Scene) -> Quantities:
     items = [
         Quantity("mass", "Mass m", scene.mass, "kg"),
         Quantity("wheel_radius", "Wheel radius r", scene.radius, "m"),
-        Quantity("gear_ratios", "Gear ratios U_i", _ratios_text(scene.ratios), ""),
+        Quantity("gear_ratios", "Gear ratios U_i", tuple(scene.ratios), ""),
         Quantity("final_drive", "Final drive U_K", scene.final_drive, ""),
         Quantity("efficiency", "Driveline efficiency η", scene.efficiency, ""),
         Quantity(
             "rotating_mass_factors",
             "Rotating-mass factors δ_i",
-            " / ".join(f"{d:.4g}" for d in scene.deltas),
+            tuple(scene.deltas),
             "",
             f"δ_0 = {scene.delta_free:g} while the clutch is open or slips",
         ),

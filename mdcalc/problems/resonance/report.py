@@ -108,7 +108,7 @@ def _campbell_table(c: ChainSection, md: Modal, cb: Campbell) -> Table:
                     "main" if is_main_order(c, k) else "",
                 ]
             rows.append(row)
-    rows.sort(key=lambda r: float(r[0]))
+    rows.sort(key=lambda r: float(r[0]))  # type: ignore[arg-type]  # a speed
     columns = [
         Column("critical speed", "rpm"),
         Column("order k"),
