@@ -27,6 +27,7 @@ from mdcalc.output.report import (
     Quantity,
     Report,
     Table,
+    grids,
 )
 from mdcalc.output.text import _OTHER, render_plain, render_rich
 from mdcalc.runs.runner import solve_text
@@ -53,9 +54,13 @@ SHIPPED = sorted(
 def test_shipped_case_plain_text_is_riches_text(path: Path):
     report = solve_text(read_case(path)).report
     plain = render_plain(report, WIDTH)
+    text = rich_text(report)
     if plain is not None:
-        assert plain == rich_text(report)
+        assert plain == text
     assert_no_empty_column(report)  # issue 23: a report shows only what its scene needs
+    lines = text.splitlines()
+    for grid in grids(report):  # issue 33: a section's title is one line, never wrapped
+        assert not grid.title or grid.title in lines, grid.title
 
 
 def test_most_shipped_cases_take_the_plain_path():

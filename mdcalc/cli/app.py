@@ -258,6 +258,7 @@ def check_command(
     def body() -> int:
         from rich.table import Table
 
+        from mdcalc.output.text import print_titled
         from mdcalc.runs.check import check_paths, collect
         from mdcalc.runs.pool import jobs_for
 
@@ -271,7 +272,7 @@ def check_command(
             table.add_row(row.file, row.key, row.expected, row.got, row.tolerance, mark)
         console = make_console()
         if outcome.rows:
-            console.print(table)
+            print_titled(console, table)
         for message in outcome.input_errors + outcome.internal_errors:
             print_error(message)
         print(

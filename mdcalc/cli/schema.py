@@ -45,6 +45,7 @@ def run_schema(problem: str, output: Path | None, keys: bool, force: bool) -> in
         from rich.table import Table
 
         from mdcalc.input.schema import key_rows
+        from mdcalc.output.text import print_titled
 
         rows = key_rows(problem_schema(problem))
         table = Table(title=f"The keys of an mdcalc {problem} case file", title_justify="left")
@@ -60,7 +61,7 @@ def run_schema(problem: str, output: Path | None, keys: bool, force: bool) -> in
                     for cell in (row.key, row.unit, row.default, row.allowed, row.description)
                 )
             )
-        make_console().print(table)
+        print_titled(make_console(), table)
         return 0
     text = schema_text(problem)
     if output is None:

@@ -128,6 +128,7 @@ def print_sweep(table: Any, points: int, how: str) -> None:
     from rich.table import Table
 
     from mdcalc.output.report import format_value
+    from mdcalc.output.text import print_titled
     from mdcalc.runs.sweep import summary_rows
 
     console = stdout_console()
@@ -143,14 +144,14 @@ def print_sweep(table: Any, points: int, how: str) -> None:
             cells = [format_value(float(table.columns[k][index]), 6) for k in table.keys]
             status = STATUS_OF_EXIT.get(int(table.status[index]), str(table.status[index]))
             rich_table.add_row(*[c if c != "nan" else "—" for c in cells], status)
-        console.print(rich_table)
+        print_titled(console, rich_table)
         return
     rich_table = Table(title=f"Sweep: {points} points, {how}; range of each column")
     for label in ("key", "unit", "min", "max"):
         rich_table.add_column(label, justify="left" if label in ("key", "unit") else "right")
     for row in summary_rows(table):
         rich_table.add_row(*row)
-    console.print(rich_table)
+    print_titled(console, rich_table)
     console.print(status_counts(table.status))
     console.print(
         "write every point with --out FILE.csv or FILE.json; pick columns with --result KEY",

@@ -12,10 +12,12 @@ def grid_rich(grid: Grid) -> Any:
     """A rich Table of ``grid``: a heavy box with a header, or none for quantities."""
     from rich.table import Table as RichTable
 
+    # the title is printed above the table, on its own line (render_rich): a table's
+    # own title wraps to the table's width
     if grid.header is None:
-        table = RichTable(title=grid.title, title_justify="left", show_header=False, box=None)
+        table = RichTable(show_header=False, box=None)
     else:
-        table = RichTable(title=grid.title, title_justify="left")
+        table = RichTable()
     for i, role in enumerate(grid.roles):
         label = grid.header[i] if grid.header is not None else role
         table.add_column(
@@ -32,6 +34,17 @@ def grid_rich(grid: Grid) -> Any:
     return table
 
 
+def print_titled(console: Any, table: Any) -> None:
+    """A rich Table with its title on a line of its own above it: a table's own title
+    wraps to the table's width ("Lecture method (7.48): constant force, no / resistance")."""
+    from rich.text import Text
+
+    title, table.title = table.title, None
+    if title:
+        console.print(Text(str(title), style="italic"), soft_wrap=True)
+    console.print(table)
+
+
 def render_rich(report: Report, console: Any) -> None:
     """Print the report on a rich Console (colour only on a terminal)."""
     from rich.text import Text
@@ -41,6 +54,8 @@ def render_rich(report: Report, console: Any) -> None:
         console.print(Text(f"{report.problem} · {report.case}", style="dim"))
     for grid in grids(report):
         console.print()
+        if grid.title:  # one line, however narrow the table under it
+            console.print(Text(grid.title, style="italic"), soft_wrap=True)
         console.print(grid_rich(grid))
     if report.notes:
         console.print()
@@ -214,10 +229,12 @@ def render_plain(report: Report, width: int) -> str | None:
         return None
     for grid in grids(report):
         boxed = grid.header is not None
-        lines = _plain_table(grid.title, grid.header, grid.rows, grid.right, boxed, width)
-        if lines is None:
+        lines = _plain_table("", grid.header, grid.rows, grid.right, boxed, width)
+        if lines is None or not (_narrow(grid.title) and _literal(grid.title)):
             return None
         out.append("")
+        if grid.title:  # on its own line, as render_rich prints it
+            out.append(grid.title)
         out.extend(lines)
     if report.notes:
         out.append("")

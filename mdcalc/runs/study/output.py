@@ -128,6 +128,8 @@ def to_json(result: StudyResult, indent: int | None = 2) -> str:
 def render_rich(result: StudyResult, console: Any) -> None:
     from rich.table import Table
 
+    from mdcalc.output.text import print_titled
+
     plan, spec, ev = result.plan, result.plan.spec, result.evaluated
     title = plan.case.data.get("title") or plan.problem
     n = len(result.samples)
@@ -155,7 +157,7 @@ def render_rich(result: StudyResult, console: Any) -> None:
             format_value(float(column.min())),
             format_value(float(column.max())),
         )
-    console.print(inputs)
+    print_titled(console, inputs)
     table = Table(title="Results", title_justify="left")
     labels = ["result", "unit", "mean", "sd", *(f"P{p}" for p in PERCENTILES), "min", "max"]
     for label in labels:
@@ -166,7 +168,7 @@ def render_rich(result: StudyResult, console: Any) -> None:
             continue
         numbers = [s.mean, s.sd, *s.percentiles.values(), s.low, s.high]
         table.add_row(key, s.unit, *(format_value(v) for v in numbers))
-    console.print(table)
+    print_titled(console, table)
     if result.limits:
         limits = Table(title="Limits", title_justify="left")
         for label in ("result", "exceeded when", "samples", "probability", "95 % interval", ""):
@@ -180,7 +182,7 @@ def render_rich(result: StudyResult, console: Any) -> None:
                 f"{format_value(e.low, 3)} … {format_value(e.high, 3)}",
                 e.note,
             )
-        console.print(limits)
+        print_titled(console, limits)
     if result.sensitivity:
         per_design = spec.sensitivity_samples // max(result.sensitivity_replicates, 1)
         sens = Table(
@@ -202,7 +204,7 @@ def render_rich(result: StudyResult, console: Any) -> None:
                 )
             if sob.note:  # no indices, or indices from fewer designs
                 sens.add_row(sob.key, "—", sob.note, "")
-        console.print(sens)
+        print_titled(console, sens)
     failed = sum(ev.counts.values())
     if failed:
         console.print(f"[yellow]{failed:,} of {n:,} samples gave no values:[/yellow]")
