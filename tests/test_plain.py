@@ -9,6 +9,7 @@ something render_plain does not (narrow a wide table, read markup, fold a long w
 from __future__ import annotations
 
 import io
+import json
 import sys
 from pathlib import Path
 
@@ -239,3 +240,22 @@ def test_the_run_summary_on_a_pipe_is_riches_text(monkeypatch, failed, how, plai
     lines = [f"{status}: {path}" for path, status in failed[:20]]
     text = plain_summary([head], ["status", "files"], [["ok", "7"]], [False, True], lines, 140)
     assert (text is not None) == plain
+
+
+def test_rounding_noise_of_a_column_prints_as_zero():
+    """Issue 33: μ₂₃ at t = 0 printed 1.8834e-16 (a difference of equal numbers); a
+    value below 1e-12 of its column's largest is 0, but a column of small numbers
+    keeps them, and JSON keeps every value as computed."""
+    from mdcalc.output.jsondoc import to_json
+
+    table = Table(
+        "μ(t)",
+        "mu",
+        [Column("t", "s"), Column("μ₂₃"), Column("small")],
+        [[0.0, 1.8834e-16, 1e-16], [0.1, 1.2, 2e-16]],
+    )
+    grid = grids(Report("mine-hoist", "noise", [table]))[0]
+    assert [row[1] for row in grid.rows] == ["0", "1.2"]
+    assert [row[2] for row in grid.rows] == ["1.0000e-16", "2.0000e-16"]
+    rows = json.loads(to_json(Report("mine-hoist", "noise", [table])))["sections"][0]["rows"]
+    assert rows[0][1] == 1.8834e-16
