@@ -62,6 +62,18 @@ def test_shipped_case_plain_text_is_riches_text(path: Path):
     lines = text.splitlines()
     for grid in grids(report):  # issue 33: a section's title is one line, never wrapped
         assert not grid.title or grid.title in lines, grid.title
+    for unit in _units(report):  # issue 33: a unit as a person reads it (kg·m², m/s²)
+        assert "*" not in unit and "^" not in unit, unit
+
+
+def _units(report: Report) -> list[str]:
+    """Every unit a report shows: of its quantities, table columns, Methods quantities."""
+    out = []
+    for section in report.sections:
+        out += [q.unit for q in getattr(section, "items", [])]
+        out += [c.unit for c in getattr(section, "columns", [])]
+        out += [q.unit for q in getattr(section, "quantities", [])]
+    return out
 
 
 def test_most_shipped_cases_take_the_plain_path():

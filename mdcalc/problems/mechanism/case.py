@@ -226,7 +226,7 @@ class Case(CaseBase):
             if not 0.0 < value <= 1e12:
                 raise FieldError(
                     ("inertia", "formula"),
-                    f"I(φ) = {value:.6g} kg·m^2 at φ = {phi:.6g} rad; an inertia must be "
+                    f"I(φ) = {value:.6g} kg·m² at φ = {phi:.6g} rad; an inertia must be "
                     "in (0, 1e12]",
                 )
 

@@ -237,7 +237,7 @@ def _clutch_section(c: Clutch, drive: Drive | None, notes: list[Note]) -> Quanti
     v = clutch_values(c)
     items = [
         Quantity(
-            "clutch_c0", "c₀ of M = c₀·ξⁿ", c.c0, "N·m/rad^n", f"{c.c0 / KGF_M:.5g} kgf·m/rad^n"
+            "clutch_c0", "c₀ of M = c₀·ξⁿ", c.c0, "N·m/radⁿ", f"{c.c0 / KGF_M:.5g} kgf·m/radⁿ"
         ),
         Quantity("clutch_exponent", "n", v["clutch_exponent"], ""),
         Quantity("clutch_twist_min", "ξ at the lowest working load", v["clutch_twist_min"], "rad"),
@@ -368,7 +368,7 @@ def _drive_sections(result: Result, notes: list[Note]) -> list[Any]:
             "drive_inertia",
             "J of the two-mass model" + (", J₂ + i²J₃" if machine else ""),
             v["drive_inertia"],
-            "kg·m^2",
+            "kg·m²",
         ),
         Quantity("drive_stiffness", "Clutch c", v["drive_stiffness"], "N·m/rad"),
         Quantity("drive_damping", "Clutch b", v["drive_damping"], "N·m·s/rad", f"ζ = {zeta:.4g}"),
@@ -422,7 +422,7 @@ def _three_mass_sections(result: Result, notes: list[Note]) -> list[Any]:
         result.chi_after_kept_damping,
     )
     items = [
-        Quantity("antiresonance_machine", "J₃' = i²·J₃", v["antiresonance_machine"], "kg·m^2"),
+        Quantity("antiresonance_machine", "J₃' = i²·J₃", v["antiresonance_machine"], "kg·m²"),
         Quantity(
             "antiresonance_coupling",
             "Coupling c₂",
