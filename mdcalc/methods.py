@@ -98,9 +98,7 @@ def compare(
         if alone is not None:
             return MethodsTable(title, key, quantities, alone)
     for method in methods:
-        with budget.paused():  # scipy.integrate: 0.3 s the first time, not the scene's
-            for module in method.imports:
-                importlib.import_module(module)
+        _import(method)
         granted = 0.0
         try:
             with budget.share() as granted:
@@ -149,6 +147,14 @@ def compare(
     return MethodsTable(title, key, quantities, rows)
 
 
+def _import(method: Method) -> None:
+    """What the method needs (scipy.integrate: 0.3 s the first time in a process), with
+    the clock stopped: it is no part of the scene's work."""
+    with budget.paused():
+        for module in method.imports:
+            importlib.import_module(module)
+
+
 def _reference_alone(methods: list[Method]) -> list[MethodRow] | None:
     """The rows with the reference alone run (timed once), the others not run; None
     when the reference runs over its budget (then every method runs, for a stand-in)."""
@@ -157,9 +163,7 @@ def _reference_alone(methods: list[Method]) -> list[MethodRow] | None:
         if not method.reference:
             rows.append(MethodRow(method.name, {}, {}, None, False, "not run", method.imports))
             continue
-        with budget.paused():
-            for module in method.imports:
-                importlib.import_module(module)
+        _import(method)
         try:
             with budget.share():
                 start = time.perf_counter()

@@ -79,10 +79,9 @@ def guard(body: Callable[[], int], debug: bool, json_case: str | None = None) ->
         if debug:
             traceback.print_exc()
         if json_case is not None:
-            from mdcalc.output.jsondoc import error_json
+            from mdcalc.output.jsondoc import bug_errors, error_json
 
-            bug = {"message": f"{type(exc).__name__}: {exc}", "traceback": traceback.format_exc()}
-            print(error_json(json_case, "internal-error", [bug], indent=2))
+            print(error_json(json_case, "internal-error", bug_errors(exc), indent=2))
         print_error(
             f"mdcalc: internal error: {type(exc).__name__}: {exc} -- this is a bug in "
             f"mdcalc {__version__}; please report it with the case file"

@@ -18,12 +18,15 @@ def problem_schema(problem: str) -> dict[str, Any]:
     from mdcalc.input.schema import case_schema
     from mdcalc.runs.study.spec import StudySpec
 
-    if problem not in PROBLEMS:
-        raise InputError(
-            "mdcalc schema",
-            [Problem(f"unknown problem {problem!r}; allowed: {', '.join(PROBLEMS)}")],
-        )
+    _known(problem, "mdcalc schema")
     return case_schema(PROBLEMS[problem].load().Case, problem, {"study": StudySpec})
+
+
+def _known(problem: str, command: str) -> None:
+    """Refuse a problem mdcalc does not have, naming the ones it has."""
+    if problem not in PROBLEMS:
+        allowed = ", ".join(PROBLEMS)
+        raise InputError(command, [Problem(f"unknown problem {problem!r}; allowed: {allowed}")])
 
 
 def schema_text(problem: str) -> str:
@@ -100,11 +103,7 @@ def run_new(problem: str, output: Path | None, minimal: bool, force: bool) -> in
     from mdcalc.cli.command import print_error
     from mdcalc.input.files import write_atomic
 
-    if problem not in PROBLEMS:
-        raise InputError(
-            "mdcalc new",
-            [Problem(f"unknown problem {problem!r}; allowed: {', '.join(PROBLEMS)}")],
-        )
+    _known(problem, "mdcalc new")
     if minimal:
         import tomli_w
 

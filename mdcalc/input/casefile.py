@@ -410,9 +410,20 @@ def is_integer_field(model: type[BaseModel], loc: tuple[str | int, ...]) -> bool
 
 
 def _unit(info: Any) -> str:
-    description = getattr(info, "description", None) or ""
-    match = _UNIT.search(description)
-    return match.group(1) if match and match.group(1) not in ("-", "") else ""
+    unit = unit_in(getattr(info, "description", None))
+    return unit if unit not in (None, "-") else ""
+
+
+def unit_in(description: str | None) -> str | None:
+    """The unit in brackets at the end of a field's description ("-" for a pure
+    number), None where it names none."""
+    match = _UNIT.search(description or "")
+    return match.group(1) if match else None
+
+
+def without_unit(description: str) -> str:
+    """A field's description without the unit at its end."""
+    return _UNIT.sub("", description).strip()
 
 
 def _show(value: Any) -> str:

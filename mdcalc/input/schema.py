@@ -24,18 +24,18 @@ Pure: no I/O; pint is asked only whether a description's unit is one it converts
 from __future__ import annotations
 
 import copy
-import re
 from dataclasses import dataclass
 from typing import Any
 
 from pydantic import BaseModel
+
+from mdcalc.input.casefile import unit_in, without_unit
 
 DIALECT = "https://json-schema.org/draft/2020-12/schema"
 #: A quantity string: a number (no spaces, no comma), then a unit.
 QUANTITY_PATTERN = r"^\s*[-+]?(\d+(\.\d*)?|\.\d+)([eE][-+]?\d+)?\s*[^\s\d.,;].*$"
 #: For a pure number a quoted number alone is taken too ("0.8", "5 %").
 NUMBER_PATTERN = r"^\s*[-+]?(\d+(\.\d*)?|\.\d+)([eE][-+]?\d+)?\s*([^\s\d.,;].*)?$"
-_UNIT = re.compile(r"\[([^\[\]]*)\]\s*$")
 _REF = "#/$defs/"
 
 
@@ -204,12 +204,6 @@ def _converts(description: str | None) -> bool:
     return True
 
 
-def unit_in(description: str | None) -> str | None:
-    """The unit in brackets at the end of a description ("-" for a pure number)."""
-    match = _UNIT.search(description or "")
-    return match.group(1) if match else None
-
-
 #: How a table of named entries shows its names: ``expect.<result>.rel``.
 PLACEHOLDERS = {"expect": "<result>", "inputs": "<key>", "limits": "<result>"}
 
@@ -268,7 +262,7 @@ def _resolve(node: dict[str, Any], definitions: dict[str, Any]) -> dict[str, Any
 def _row(key: str, node: dict[str, Any], required: bool, section: bool = False) -> KeyRow:
     description = " ".join(str(node.get("description") or "").split())
     unit = unit_in(description)
-    text = _UNIT.sub("", description).strip() if unit is not None else description
+    text = without_unit(description) if unit is not None else description
     if section:
         text = text.split(". ")[0].rstrip(".")
     if section:

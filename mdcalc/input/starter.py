@@ -16,15 +16,14 @@ from __future__ import annotations
 
 import itertools
 import json
-import re
 from pathlib import Path
 from typing import Any
 
 from pydantic import BaseModel
 
 from mdcalc.errors import InputError
-from mdcalc.input.casefile import CaseText, validate
-from mdcalc.input.schema import strict_definition, unit_in
+from mdcalc.input.casefile import CaseText, get_key, unit_in, validate, without_unit
+from mdcalc.input.schema import strict_definition
 
 #: The column where a value's comment starts (longer lines put it two spaces after).
 COMMENT_COLUMN = 34
@@ -50,7 +49,7 @@ def starter_text(
 ) -> str:
     """The starter case of ``problem``: ``template`` active, ``extras`` commented out
     (keys of a section the template has, or optional sections and their keys)."""
-    writer = _Writer(problem, model, schema, template, extras)
+    writer = _Writer(model, schema, template, extras)
     head = [
         f"#:schema ./{schema_file}",
         f"# mdcalc {problem}: {summary}",
@@ -67,16 +66,13 @@ def starter_text(
 class _Writer:
     def __init__(
         self,
-        problem: str,
         model: type[BaseModel],
         schema: dict[str, Any],
         template: dict[str, Any],
         extras: dict[str, Any],
     ) -> None:
-        self.problem = problem
         self.model = model
         self.schema = schema
-        self.definitions = schema.get("$defs", {})
         self.template = template
         self.extras = extras
 
@@ -109,7 +105,7 @@ class _Writer:
         self, context: dict[str, Any], where: tuple[str | int, ...], key: str, value: Any
     ) -> bool:
         """Is ``key`` neither valid alone nor in place of one key beside it?"""
-        section = _get(context, where)
+        section = get_key(context, where)
         if self.valid(_with(context, where, {**section, key: value})):
             return False
         return not any(
@@ -134,7 +130,7 @@ class _Writer:
         case with its section uncommented): optional; instead of a key beside it (or of
         the section's keys that have no default); with the other commented keys of a
         form (``shown``), instead of some; else what the validation says of it alone."""
-        section = _get(context, where)
+        section = get_key(context, where)
         shown = {k: v for k, v in shown.items() if not _table(v)}  # keys, not sub-tables
         alone = self.problems(_with(context, where, {**section, key: value}))
         if not alone:
@@ -273,7 +269,7 @@ class _Writer:
         node = self._resolve(node)
         description = " ".join(str(node.get("description") or "").split())
         unit = unit_in(description)
-        meaning = description[: description.rfind("[")].strip() if unit is not None else description
+        meaning = without_unit(description) if unit is not None else description
         note = f"{unit} · {meaning}" if unit not in (None, "", "-") else meaning
         lead = "# " if commented else ""
         if key in active:
@@ -311,8 +307,7 @@ class _Writer:
 
 def _first_sentence(text: str | None) -> str:
     """A section's description in a line: its first sentence, without a unit."""
-    text = " ".join((text or "").split())
-    text = re.sub(r"\s*\[[^\[\]]*\]$", "", text)
+    text = without_unit(" ".join((text or "").split()))
     return text.split(". ")[0].rstrip(".") if text else ""
 
 
@@ -354,12 +349,6 @@ def _active(value: Any) -> Any:
     if isinstance(value, dict):
         return {k: _active(v) for k, v in value.items() if k not in (OTHER, NOTE)}
     return value
-
-
-def _get(data: Any, where: tuple[str | int, ...]) -> Any:
-    for part in where:
-        data = data[part]
-    return data
 
 
 def _with(data: Any, where: tuple[str | int, ...], value: Any) -> Any:

@@ -112,6 +112,14 @@ def error_json(
     return dumps(document, indent)
 
 
+def bug_errors(exc: BaseException) -> list[dict[str, Any]]:
+    """The ``errors`` of an internal-error record: the exception and its traceback (the
+    one being handled)."""
+    import traceback
+
+    return [{"message": f"{type(exc).__name__}: {exc}", "traceback": traceback.format_exc()}]
+
+
 def input_errors(problems: Any) -> list[dict[str, Any]]:
     """The ``errors`` of an input-error record, from an InputError's problems."""
     return [

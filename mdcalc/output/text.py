@@ -12,12 +12,11 @@ def grid_rich(grid: Grid) -> Any:
     """A rich Table of ``grid``: a heavy box with a header, or none for quantities."""
     from rich.table import Table as RichTable
 
-    # the title is printed above the table, on its own line (render_rich): a table's
-    # own title wraps to the table's width
+    # (render_rich prints the title on a line of its own: print_titled)
     if grid.header is None:
-        table = RichTable(show_header=False, box=None)
+        table = RichTable(title=grid.title or None, show_header=False, box=None)
     else:
-        table = RichTable()
+        table = RichTable(title=grid.title or None)
     for i, role in enumerate(grid.roles):
         label = grid.header[i] if grid.header is not None else role
         table.add_column(
@@ -54,9 +53,7 @@ def render_rich(report: Report, console: Any) -> None:
         console.print(Text(f"{report.problem} · {report.case}", style="dim"))
     for grid in grids(report):
         console.print()
-        if grid.title:  # one line, however narrow the table under it
-            console.print(Text(grid.title, style="italic"), soft_wrap=True)
-        console.print(grid_rich(grid))
+        print_titled(console, grid_rich(grid))
     if report.notes:
         console.print()
         for note in report.notes:

@@ -9,7 +9,6 @@ the rest run on.
 from __future__ import annotations
 
 import time
-import traceback
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -113,18 +112,16 @@ def run_file(path: str, options: RunOptions) -> Outcome:
             plain = None if options.color else render_plain(report, options.width)
             outcome.text = plain or _rendered(lambda c: render_rich(report, c), options)
     except InputError as exc:
-        outcome = Outcome(path, EXIT_INPUT, messages=[str(exc)])
         from mdcalc.output.jsondoc import input_errors
 
+        outcome = Outcome(path, EXIT_INPUT, messages=[str(exc)])
         outcome.json = _error_json(path, "input-error", input_errors(exc.problems))
     except Exception as exc:
+        from mdcalc.output.jsondoc import bug_errors
+
         line = f"{path}: internal error: {type(exc).__name__}: {exc}"
         outcome = Outcome(path, EXIT_BUG, messages=[line])
-        outcome.json = _error_json(
-            path,
-            "internal-error",
-            [{"message": f"{type(exc).__name__}: {exc}", "traceback": traceback.format_exc()}],
-        )
+        outcome.json = _error_json(path, "internal-error", bug_errors(exc))
     outcome.seconds = time.perf_counter() - start
     return outcome
 
