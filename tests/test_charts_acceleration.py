@@ -121,7 +121,7 @@ def test_lecture_curve_follows_7_40_and_7_42():
     v_end = 8.64 / 14.28 / 21.90 / 27.78 m/s, total 17.49 s."""
     charts, _ = charts_of("lecture")
     lecture = series(charts[0], "lecture method")
-    assert lecture.style == "dashed"
+    assert lecture.role == "comparison"
     times, v_end, clock = [0.0], [0.0], 0.0
     ratios = (3.8, 2.3, 1.5, 1.0)
     for k, u in enumerate(ratios):
@@ -199,7 +199,7 @@ def test_traction_diagram_with_drag_and_adhesion():
     assert max(first.y) == pytest.approx(650.0 * 3.82 * 3.42 * 0.92 / 0.34)
     # Upshifts (plan) at 7000 rpm, on the gear's curve.
     shifts = series(traction, "upshifts")
-    assert shifts.style == "points"
+    assert shifts.role == "event"
     assert shifts.x[0] == pytest.approx(7000.0 * RPM * 0.34 / (3.82 * 3.42) * KMH, rel=1e-12)
     torque_7000 = 600.0 + (520.0 - 600.0) * (7000.0 - 6000.0) / 1200.0
     assert shifts.y[0] == pytest.approx(torque_7000 * 3.82 * 3.42 * 0.92 / 0.34, rel=1e-12)

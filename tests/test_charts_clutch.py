@@ -67,17 +67,17 @@ def test_fig2_curves_follow_26_at_200_points():
     own = c_max(*pairs, 0.65, 0.8)
     assert own == pytest.approx(4.249990061674503, rel=1e-12)
     point = series(chart, f"this case: C_max = {own:.4g}")
-    assert point.style == "points"
+    assert point.role == "this-case"
     assert sorted(point.x) == [0.65, 0.8]
     assert list(point.y) == pytest.approx([own, own], rel=1e-12)
     assert series(chart, "η₂ = η, η₁ = 0.65").y[-1] == pytest.approx(own, rel=1e-12)
     assert series(chart, "η₁ = η, η₂ = 0.8").y[0] == pytest.approx(own, rel=1e-12)
-    marks = {m.label: (m.axis, m.value) for m in chart.marks}
-    assert marks == {
-        "η₂ = 0.8 (this case)": ("x", 0.8),
-        "η₁ = 0.65 (this case)": ("x", 0.65),
-        "gain C = 2 (this clutch)": ("y", 2.0),
-    }
+    marks = [(m.label, m.axis, m.value, m.role) for m in chart.marks]
+    assert marks == [
+        ("this case: η₂ = 0.8, η₁ = 0.65", "x", 0.8, "this-case"),  # one legend entry
+        ("", "x", 0.65, "this-case"),
+        ("gain C = 2 of this clutch: stable where C_max is above", "y", 2.0, "limit"),
+    ]
     assert not chart.y_log
     assert "[-]" in chart.x_label and "[-]" in chart.y_label
 
@@ -96,12 +96,12 @@ def test_one_material_curve_27_passes_the_brief_references(name: str, eta: float
             math.pi / (4.0 * 3 * 0.4 * x * (1.0 - x)), rel=1e-2
         )  # f₁ ≠ f₂
         assert value == pytest.approx(c_max(1, 3, 0.3, 0.4, x, x), rel=1e-12)
-    (point,) = [s for s in chart.series if s.style == "points"]
+    (point,) = [s for s in chart.series if s.role == "this-case"]
     assert point.x == [eta]
     assert point.y[0] == pytest.approx(reference, rel=2e-4)
     end = one.y[0] if eta == 0.65 else one.y[-1]
     assert end == pytest.approx(math.pi / (4.8 * eta * (1.0 - eta)), rel=1e-12)
-    assert [m.label for m in chart.marks] == [f"η₁ = η₂ = {eta:g} (this case)"]  # no [clutch]
+    assert [m.label for m in chart.marks] == [f"this case: η₁ = η₂ = {eta:g}"]  # no [clutch]
 
 
 def test_range_widens_to_the_case_and_gain_above_the_bound_is_marked():
@@ -133,7 +133,7 @@ def test_eta2_equal_to_one_leaves_out_the_unbounded_points():
     varying = series(chart, "η₂ = η, η₁ = 0.7")
     for eta, value in zip(varying.x, varying.y, strict=True):
         assert value == pytest.approx(c_max(2, 2, 0.3, 0.35, 0.7, eta), rel=1e-12)
-    assert [m.label for m in chart.marks] == ["η₁ = 0.7 (this case)"]
+    assert [m.label for m in chart.marks] == ["this case: η₁ = 0.7"]
 
 
 def test_eta_next_to_one_is_finite_on_a_log_axis():
@@ -142,7 +142,7 @@ def test_eta_next_to_one_is_finite_on_a_log_axis():
     eta = 1.0 - 2.0**-30
     assert chart.y_log
     own = math.pi / (4.0 * 3 * 0.4 * eta * (1.0 - eta))
-    (point,) = [s for s in chart.series if s.style == "points"]
+    (point,) = [s for s in chart.series if s.role == "this-case"]
     assert point.x == [eta] and point.y[0] == pytest.approx(own, rel=1e-9)
     one = series(chart, "η₁ = η₂ = η (27)")
     assert one.x[-1] == pytest.approx(eta, abs=1e-15)

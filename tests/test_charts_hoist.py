@@ -51,7 +51,7 @@ def curve(chart: Chart) -> Series:
 def points(chart: Chart, start: str) -> Series:
     found = [s for s in chart.series if s.label.startswith(start)]
     assert len(found) == 1, [s.label for s in chart.series]
-    assert found[0].style == "points"
+    assert found[0].role == "event"
     return found[0]
 
 
@@ -317,7 +317,7 @@ def test_every_rope_chart_is_finite_and_marks_static_and_reported():
             assert 1.0 in marks(chart, "y")
             for series in chart.series:
                 assert all(math.isfinite(v) for v in [*series.x, *series.y])
-                assert list(series.x) == sorted(series.x) or series.style == "points"
+                assert list(series.x) == sorted(series.x) or series.role == "event"
 
 
 # ------------------------------------------------- touch-down (not in the cases)

@@ -96,7 +96,7 @@ def test_linear_characteristic_follows_the_closed_form():
     assert marks["ω_mean"] == pytest.approx(_revolution_mean(phi, omega), rel=1e-6)
     # Kovylin's nodes at n = 16: every 22.5° over three revolutions
     nodes = speed.series[1]
-    assert nodes.style == "points" and "n = 16" in nodes.label
+    assert nodes.role == "nodes" and "n = 16" in nodes.label
     assert list(nodes.x) == pytest.approx([22.5 * k for k in range(49)])
     assert nodes.y[0] == omega0
 

@@ -113,7 +113,7 @@ def test_seed_first_swing_maximum():
         # 16 points per fast period: a peak is missed by at most |b_fast|·(1 - cos(π/16))
         assert mu[first].max() >= hand_max - abs(hand[key][1]) * (1 - math.cos(math.pi / 16))
         point = chart.series[-1]
-        assert point.style == "points" and len(point.x) == 1
+        assert point.role == "this-case" and len(point.x) == 1
         assert point.y[0] == pytest.approx(hand_max, rel=1e-9)
         if f"{name}_first_swing" in expect:
             assert point.y[0] == pytest.approx(expect[f"{name}_first_swing"]["value"], rel=1e-9)
@@ -131,10 +131,10 @@ def test_stiff_chord_draws_the_fast_mode_as_an_envelope():
     mu12, mu23 = module.charts(result)
     t, slow = _curve(mu12)
     np.testing.assert_allclose(slow, _mu(hand, "b12", t, modes=(0,)), atol=1e-12)
-    envelope = mu12.series[1]
-    assert envelope.style == "dashed" and "envelope" in envelope.label
-    n = len(t)
-    upper, lower = np.array(envelope.y[:n]), np.array(envelope.y[n:])[::-1]
+    envelope, below = mu12.series[1], mu12.series[2]
+    assert envelope.role == below.role == "envelope" and "envelope" in envelope.label
+    assert below.label == "" and list(envelope.x) == list(below.x) == list(t)
+    upper, lower = np.array(envelope.y), np.array(below.y)
     fast = abs(hand["b12"][1])
     np.testing.assert_allclose(upper - slow, fast, atol=1e-12)
     np.testing.assert_allclose(slow - lower, fast, atol=1e-12)

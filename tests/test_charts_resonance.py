@@ -74,11 +74,12 @@ stiffnesses = [1.0e5]
 def test_default_four_stroke_orders_are_one_fan(tmp_path):
     c = chart(written(tmp_path, CHAIN + "[campbell]\nfrom_rpm = 600.0\nto_rpm = 3000.0\n"), "")
     omega = math.sqrt(1.0e5 * (1.0 / 0.5 + 1.0 / 2.0))  # 500 rad/s
-    x, y = series(c, "orders k·n/60")
-    orders = [0.5 * j for j in range(1, 25)]  # 0.5 … 12, four-stroke
-    assert x[::2] == [0.0] * 25 and y[::2] == [0.0] * 25  # back to the origin each time
-    assert x[1::2] == [3000.0] * 24
-    assert y[1::2] == pytest.approx([k * 3000.0 / 60.0 for k in orders], rel=1e-12)
+    rays = [s for s in c.series if s.group == "orders"]
+    assert rays[0].label.startswith("orders k·n/60") and not any(s.label for s in rays[1:])
+    orders = [0.5 * j for j in range(1, 25)]  # 0.5 … 12, four-stroke: a ray each
+    assert [list(s.x) for s in rays] == [[0.0, 3000.0]] * 24
+    assert [s.y[0] for s in rays] == [0.0] * 24
+    assert [s.y[1] for s in rays] == pytest.approx([k * 3000.0 / 60.0 for k in orders], rel=1e-12)
     n, _ = series(c, "critical speeds")
     want = [60.0 * omega / (2.0 * math.pi * k) for k in orders]
     assert sorted(n) == pytest.approx(sorted(s for s in want if 600.0 <= s <= 3000.0), rel=1e-10)

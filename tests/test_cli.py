@@ -44,8 +44,9 @@ def test_help_shows_each_summary_whole_and_true(cli):
         summary = " ".join((command.short_help or "").split())
         assert summary and summary in text, command.name
     study = " ".join(cli("study", "--help").stdout.split())
-    assert "--save" not in study and "--report" not in study and "per file" not in study
-    assert "Let --plot and --out overwrite a file." in study
+    assert "--save" not in study and "per file" not in study
+    assert "Let --plot, --out and --report overwrite a file." in study
+    assert "the nominal scene's calculation report" in study
     sweep = " ".join(cli("sweep", "--help").stdout.split())
     assert "per file" not in sweep
     assert "mdcalc CASE.toml" in text
@@ -68,7 +69,7 @@ def test_json_is_valid_and_not_wrapped_when_piped():
     assert done.returncode == 0
     document = json.loads(done.stdout)
     assert document["problem"] == "braking" and document["status"] == "ok"
-    assert document["format"] == 1
+    assert document["format"] == 2
     # (7.48) by hand: t = V0·m/(k·P_D), S = V0·t/2
     t = 27.8 * 1500 / (10 * 1644)
     assert document["results"]["lecture_time"]["value"] == pytest.approx(t, rel=1e-12)

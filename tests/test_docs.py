@@ -126,8 +126,12 @@ def run(command: str, folder: Path) -> str:
 TIME = re.compile(r"\d[\d.]*(?:e[-+]?\d+)?\s?(?:µs|ms|ns)\b")
 #: A line that sums up how long a run took (a batch's, a study's): its seconds and
 #: rates are masked too; elsewhere a number in s is a result.
-TIMED_LINE = re.compile(r"\d (?:files|samples|points)/s\b|\bin all:")
-SECONDS_OR_RATE = re.compile(r"\d[\d.,]*(?:e[-+]?\d+)?\s?(?:(?:files|samples|points)/s|s)\b")
+TIMED_LINE = re.compile(
+    r"\d (?:files|samples|points)/s\b|\bin all:|\bRun time, |Samples per second"
+)
+SECONDS_OR_RATE = re.compile(
+    r"\d[\d.,]*(?:e[-+]?\d+)?\s?(?:(?:files|samples|points)/s|s)\b|(?<=second)\s+[\d,]+\s*$"
+)
 #: How many worker processes ran: one per core by default.
 JOBS = re.compile(r"\b\d+ jobs?\b")
 #: Where a study's or sweep's blocks ran is decided by timing a probe (the numbers
@@ -223,3 +227,7 @@ def test_the_masks_keep_numbers_and_drop_run_times():
     study = "braking, 100,000 samples (lhs, seed 2026), vectorized kernel"
     assert masked(study + ", blocks on process pool, 2 jobs") == masked(study)
     assert masked("Stopping time 5.0385 s") != masked("Stopping time 5.0386 s")
+    # a study's run times and rate, in its Study section (issue 33.1)
+    assert masked(" Run time, in all   1.64 s ") == masked(" Run time, in all   782 ms ")
+    assert masked(" Samples per second  3,831,247 ") == masked(" Samples per second  41,002 ")
+    assert masked(" Samples   100000 ") != masked(" Samples   100001 ")

@@ -7,6 +7,7 @@ file must be a valid image of its kind. The chart data must be finite and plain.
 from __future__ import annotations
 
 import math
+import re
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
@@ -66,20 +67,64 @@ def _check_chart_data(charts) -> None:
 
 
 @pytest.mark.parametrize(("name", "path"), CASE_FILES, ids=[f"{n}:{p.name}" for n, p in CASE_FILES])
-def test_each_case_draws_a_valid_png(name, path, tmp_path):
-    # Solved once and drawn by the renderer --plot uses; the CLI path is tested below.
-    from mdcalc.output.plot import render
+def test_each_case_draws_a_valid_png_that_reads_at_a_glance(name, path, tmp_path):
+    """Issue 33.3: solved once, drawn once by the figure --plot writes, and checked from
+    matplotlib's artists: no text over text, no legend over a drawn line, all inside."""
+    from mdcalc.output.plot import figure_of
 
     run = _solve(path)
     charts = run.module.charts(run.result)
     _check_chart_data(charts)
+    from mdcalc.output.document import document_of
+    from tests.test_reports import assert_files_as_a_report
+
+    assert_files_as_a_report(document_of(run), path.name)  # solved once for both
     if not charts:
         pytest.skip("this scene has no curve (the CLI says so and writes nothing)")
-    out = tmp_path / "plot.png"
-    render(charts, out, title=run.report.title)
-    width, height = png_size(out.read_bytes())
+    figure = figure_of(charts, title=run.report.title)  # what render writes (tested below)
+    assert_reads_at_a_glance(figure)
+    width, height = figure.canvas.get_width_height()
     assert width >= 400 and height >= 200 * len(charts)
-    assert [p.name for p in tmp_path.iterdir()] == ["plot.png"]  # no temporary file left
+
+
+def assert_reads_at_a_glance(figure) -> None:
+    """No title, axis label, legend or annotation over another (or over tick labels),
+    none outside the figure, and no legend box over a drawn line or point."""
+    from mdcalc.output.plot import covers, drawn_shapes
+
+    figure.draw_without_rendering()  # every position laid out, at the figure's own dpi
+    renderer = figure.canvas.get_renderer()
+    page = figure.bbox
+    texts = []  # (what, box, is a tick label)
+    if figure._suptitle is not None and figure._suptitle.get_text():
+        texts.append(("figure title", figure._suptitle.get_window_extent(renderer), False))
+    for n, ax in enumerate(figure.axes):
+        for what, artist in (
+            ("title", ax.title),
+            ("x label", ax.xaxis.label),
+            ("y label", ax.yaxis.label),
+            *(("annotation", t) for t in ax.texts),
+        ):
+            if artist.get_visible() and artist.get_text():
+                texts.append((f"chart {n + 1} {what}", artist.get_window_extent(renderer), False))
+        legend = ax.get_legend()
+        if legend is not None:
+            box = legend.get_window_extent(renderer)
+            texts.append((f"chart {n + 1} legend", box, False))
+            assert not covers(box, drawn_shapes(ax)), f"chart {n + 1}: a legend covers a line"
+        for axis in (ax.xaxis, ax.yaxis):
+            for tick in axis._update_ticks():  # the ticks drawn: those within the view
+                label = tick.label1
+                if label.get_visible() and label.get_text():
+                    box = label.get_window_extent(renderer)
+                    texts.append((f"chart {n + 1} tick {label.get_text()}", box, True))
+    for what, box, _ in texts:
+        assert box.x0 >= page.x0 - 1 and box.x1 <= page.x1 + 1, f"{what} cut off at a side"
+        assert box.y0 >= page.y0 - 1 and box.y1 <= page.y1 + 1, f"{what} cut off"
+    for i, (one, a, tick_a) in enumerate(texts):
+        for two, b, tick_b in texts[i + 1 :]:
+            if not (tick_a and tick_b):
+                assert not a.overlaps(b), f"{one} over {two}"
 
 
 def test_plot_through_the_cli(tmp_path, cli):
@@ -163,7 +208,7 @@ def test_render_uses_agg_and_writes_atomically(tmp_path):
 
     chart = Chart(
         "t", "x", "y",
-        [Series("a", [0.0, 1.0], [1.0, 2.0]), Series("b", [0.0, 1.0], [2.0, 1.0], "points")],
+        [Series("a", [0.0, 1.0], [1.0, 2.0]), Series("b", [0.0, 1.0], [2.0, 1.0], "event")],
         [Mark("y", 1.5, "m")],
         Shade([0.0, 1.0], [0.0, 1.0], [[0.0, 1.0], [1.0, 0.0]], levels=[0.5, 2.0]),
     )  # fmt: skip
@@ -193,3 +238,74 @@ def test_a_path_too_long_is_an_input_error(tmp_path, cli):
     result = cli("coupling", CASES / "coupling" / "example_8_1.toml", "--plot", long)
     assert result.exit_code == 2, result.stderr
     assert "cannot use this path" in result.stderr
+
+
+def test_every_look_comes_from_the_mapping_by_meaning():
+    """Issue 33.3: no chart sets a colour or line style of its own: only
+    mdcalc/output/plot.py names one, and each meaning has a look of its own."""
+    import ast
+    import typing
+
+    from mdcalc.output import plot
+
+    looks = {"color", "colour", "colors", "c", "linestyle", "ls", "linewidth", "lw", "marker",
+             "markersize", "ms", "alpha", "drawstyle", "cmap", "style"}  # fmt: skip
+    root = Path(plot.__file__).parents[1]
+    drawing = [
+        module
+        for module in sorted(root.rglob("*.py"))
+        if re.search(r"output\.plot import .*\b(Chart|Series|Mark)\b", module.read_text("utf-8"))
+    ]
+    assert len(drawing) >= 10  # every problem's charts, the study's
+    for module in drawing:
+        for node in ast.walk(ast.parse(module.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.Call):
+                own = [k.arg for k in node.keywords if k.arg in looks]
+                assert not own, f"{module.relative_to(root)}:{node.lineno} sets {own}"
+            if isinstance(node, ast.ImportFrom) and node.module:
+                assert not node.module.startswith("matplotlib"), module
+    assert set(typing.get_args(plot.Role)) == set(plot.SERIES_STYLES)
+    assert set(typing.get_args(plot.MarkRole)) == set(plot.MARK_STYLES)
+
+    def look(style):
+        return (str(style.get("linestyle")), style.get("color"), style.get("marker"))
+
+    # Every fixed look, of a curve or of a reference line, is one meaning's own; the
+    # cycle's colours are none of theirs; the cycled meanings differ by line style.
+    kinds = ("histogram", "bars")  # chart kinds, not curves among others
+    meanings: dict[tuple, set[str]] = {}  # a look: the roles that have it
+    for role, style in [*plot.SERIES_STYLES.items(), *plot.MARK_STYLES.items()]:
+        if "color" in style and role not in kinds:
+            meanings.setdefault(look(style), set()).add(role)
+    alike = [roles for roles in meanings.values() if len(roles) > 1]
+    assert not alike, f"two meanings look alike: {alike}"  # (a limit curve and line: one)
+    styles = [*plot.SERIES_STYLES.values(), *plot.MARK_STYLES.values()]
+    colours = {style["color"] for style in styles if "color" in style}
+    assert not colours & set(plot.CYCLE), "a cycle colour also means something"
+    cycled = [look(style) for style in plot.SERIES_STYLES.values() if "color" not in style]
+    assert len(set(cycled)) == len(cycled), "two cycled meanings look alike"
+    points = [tuple(sorted(v.items())) for v in plot.ONE_POINT.values()]
+    assert len(set(points)) == len(points), "two meanings of one point look alike"
+
+
+@pytest.mark.parametrize(
+    ("problem", "case"),
+    [("coupling", "coupling/example_8_1.toml"), ("mine-hoist", "mine-hoist/stiff_chord.toml")],
+)
+def test_an_envelope_is_two_curves_not_one_closed_outline(problem, case):
+    """Issue 33.3: the upper and the lower envelope are separate series (a closed
+    outline drew a vertical line at its end that read as a jump of the response),
+    each running forward in time, one legend entry between them."""
+    run = _solve(CASES / case)
+    for chart in run.module.charts(run.result):
+        edges = [s for s in chart.series if s.role == "envelope"]
+        if not edges:
+            continue
+        assert len(edges) == 2 and [bool(s.label) for s in edges] == [True, False]
+        upper, lower = edges
+        for edge in edges:
+            assert all(b > a for a, b in zip(edge.x, edge.x[1:], strict=False)), "runs back"
+        assert all(u >= w for u, w in zip(upper.y, lower.y, strict=True))
+        break
+    else:
+        raise AssertionError(f"no {problem} chart of {case} has an envelope")

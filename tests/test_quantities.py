@@ -188,10 +188,14 @@ def test_the_report_shows_what_was_written(cli):
     section = next(s for s in strict_json(result.stdout)["sections"] if s["key"] == "units")
     rows = {row[0]: row[1:] for row in section["rows"]}
     written, value, unit = rows["coupling.stiffness"]
-    assert written == "52.5 N*m/deg" and unit == "N·m/rad"
+    # the JSON: the text as written, the unit in its ASCII form (issue 33.2); the
+    # terminal: both as a person reads them
+    assert written == "52.5 N*m/deg" and unit == "N*m/rad"
     assert value == pytest.approx(52.5 * 180.0 / math.pi, rel=1e-12)
     text = cli("coupling", CASES / "coupling" / "example_8_1_units.toml").stdout
-    assert "Inputs written with units" in text and "52.5 N*m/deg" in text
+    assert "Inputs written with units" in text and "52.5 N·m/deg" in text
+    # with the digits to check the conversion by eye: 52.5·180/π = 3008.02842444
+    assert f" {52.5 * 180.0 / math.pi:.12g} " in text
 
 
 def test_a_wrong_unit_is_exit_2_with_line_and_key(cli, write_case):

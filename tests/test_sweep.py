@@ -226,7 +226,7 @@ def test_json_out_is_strict_finite_and_complete(cli, base, tmp_path):
     assert result.exit_code == 0, result.stderr
     document = strict_json(out.read_text(encoding="utf-8"))
     walk_finite(document)
-    assert document["problem"] == "braking" and document["format"] == 1
+    assert document["problem"] == "braking" and document["format"] == 2
     assert document["vectorized"] is True
     assert document["vary"] == [
         {"key": "vehicle.mass", "start": 800.0, "stop": 2000.0, "n": 3},

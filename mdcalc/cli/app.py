@@ -419,8 +419,18 @@ def study_command(
             "(needs pyarrow).",
         ),
     ] = None,
+    report: Annotated[
+        Path | None,
+        typer.Option(
+            "--report",
+            help="Write the study's report to FILE.html (charts inline) or FILE.md (chart "
+            "PNGs beside it): inputs and their distributions, statistics, limits, Sobol "
+            "indices, charts, and the nominal scene's calculation report.",
+            metavar="FILE",
+        ),
+    ] = None,
     force: Annotated[
-        bool, typer.Option("--force", help="Let --plot and --out overwrite a file.")
+        bool, typer.Option("--force", help="Let --plot, --out and --report overwrite a file.")
     ] = False,
     jobs: SampleJobsOption = 0,
     time_limit: Annotated[
@@ -456,7 +466,7 @@ def study_command(
             write_samples,
         )
 
-        check_outputs(case, plot, None, force)
+        check_outputs(case, plot, None, force, report)
         check_out_path(case, out, force)
         study_case = read_case(case)
         if "study" not in study_case.data:
@@ -496,6 +506,12 @@ def study_command(
                 replace=force,
             )
             print_error(f"wrote {plot}")
+        if report is not None:
+            from mdcalc.output.document import write_document
+            from mdcalc.runs.study.output import study_document
+
+            for written in write_document(study_document(result), report, force):
+                print_error(f"wrote {written}")
         if not answered:
             print_error(f"{case}: error: no answer: no sample gave a value")
             return EXIT_NO_ANSWER

@@ -197,7 +197,7 @@ def run_batch(
             document=report_dir is not None,
         )
         counts: Counter[str] = Counter()
-        index: list[tuple[str, str, str, str, str]] = []
+        index: list[tuple[str, str, str, str, str, str]] = []
         failed: list[tuple[str, str]] = []
         with executor(scheduler_of(scheduler), workers) as mapper:
             start = time.perf_counter()
@@ -226,15 +226,28 @@ def run_batch(
     return guard(body, debug)
 
 
-def _write_document(case: Any, outcome: Any, folder: Path) -> tuple[str, str, str, str, str]:
-    """Write a file's HTML report under ``folder``; its row of the index page."""
+def _write_document(case: Any, outcome: Any, folder: Path) -> tuple[str, str, str, str, str, str]:
+    """Write a file's HTML report under ``folder``; its row of the index page (with
+    why it has no answer, or no report: its first message, less the file's name)."""
     from mdcalc.input.casefile import write_text_atomic
 
     name = case.out_name.with_suffix(".html")
     if outcome.document:
         write_text_atomic(folder / name, outcome.document)
     link = name.as_posix() if outcome.document else ""
-    return (str(case.path), outcome.problem or "", outcome.title or "", outcome.status, link)
+    lines = [line for message in outcome.messages for line in message.splitlines()]
+    why = "; ".join(_reason(line, outcome.path) for line in lines if line.strip())
+    row = (str(case.path), outcome.problem or "", outcome.title or "", outcome.status, link, why)
+    return row
+
+
+def _reason(line: str, path: str) -> str:
+    """A message line for the index: ``FILE:3: error: key: message`` as ``line 3:
+    key: message``, ``FILE: error: no answer: …`` as ``no answer: …``."""
+    import re
+
+    line = line.strip().removeprefix(path).removeprefix(":")
+    return re.sub(r"^(\d+): error: ", r"line \1: ", line.strip()).removeprefix("error: ")
 
 
 def _write_outcome(

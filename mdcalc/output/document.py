@@ -23,7 +23,15 @@ from urllib.parse import quote
 from mdcalc._version import __version__
 from mdcalc.errors import InputError, Problem
 from mdcalc.input.casefile import dotted, unit_of
-from mdcalc.output.report import Grid, Report, format_value, grids
+from mdcalc.output.report import (
+    UNITS_KEY,
+    Grid,
+    Report,
+    Role,
+    exact_text,
+    grids,
+    pretty_unit,
+)
 
 #: The report formats, by file suffix.
 FORMATS = (".html", ".md")
@@ -45,6 +53,8 @@ class Document:
     inputs: list[tuple[str, str, str, str]]
     charts: list[Any] = field(default_factory=list)  # plot.Chart
     version: str = __version__
+    #: The heading of the inputs table (a study's: its nominal scene's inputs).
+    inputs_title: str = "Inputs"
 
 
 def document_of(run: Any, when: datetime | None = None) -> Document:
@@ -85,7 +95,9 @@ def inputs_of(model: Any, case: Any, validated: Any = None) -> list[tuple[str, s
     def leaf(value: Any, loc: tuple[str | int, ...]) -> None:
         written = _written(case, loc, value)
         conversion = converted.get(loc)
-        used = format_value(conversion.value, 8) if conversion is not None else written
+        if conversion is not None:  # a quantity string: its units as a person reads them
+            written = pretty_unit(written)
+        used = exact_text(conversion.value) if conversion is not None else written
         unit = conversion.unit if conversion is not None else unit_of(model, loc)
         rows.append((dotted(loc), written, used, unit))
 
@@ -147,6 +159,25 @@ def _toml_text(value: Any) -> str:
     if isinstance(value, str):
         return value
     return repr(value) if isinstance(value, float) else str(value)
+
+
+def _grids(document: Document) -> list[Grid]:
+    """The report's grids, less its "Inputs written with units" (the inputs table of
+    the document shows each of those values as written and as computed with)."""
+    sections = document.report.sections
+    if document.inputs:
+        sections = [s for s in sections if getattr(s, "key", None) != UNITS_KEY]
+    return grids(Report(document.report.problem, document.report.title, sections))
+
+
+def _inputs_grid(document: Document) -> Grid:
+    """The inputs as a grid: a column no input fills (units, where every input is a
+    plain number) left out."""
+    rows = [list(row) for row in document.inputs]
+    header = ["key", "as written", "as computed with", "unit"]
+    roles: list[Role] = ["label", "cell", "cell", "unit"]
+    grid = Grid(document.inputs_title, header, rows, [False] * 4, roles, [], "table")
+    return grid.shown()
 
 
 def _headers(grid: Grid) -> list[str]:
@@ -212,12 +243,11 @@ def to_html(document: Document, svgs: list[str] | None = None, missing: str = ""
             out.append(f'<div class="note {level}"><strong>{label}:</strong> {e(text)}</div>')
         out.append("</section>")
     if document.inputs:
-        out.append('<section class="inputs"><h2>Inputs</h2>')
-        rows = [list(row) for row in document.inputs]
-        header = ["key", "as written", "as computed with", "unit"]
-        out.append(_html_table(header, rows, [False] * 4, [], "inputs"))
+        out.append(f'<section class="inputs"><h2>{e(document.inputs_title)}</h2>')
+        inputs = _inputs_grid(document)
+        out.append(_html_table(_headers(inputs), inputs.rows, inputs.right, [], "inputs"))
         out.append("</section>")
-    for grid in grids(report):
+    for grid in _grids(document):
         out.append(f'<section class="{grid.kind}"><h2>{e(grid.title)}</h2>')
         classes = [
             f"col-{role}{' r' if right else ''}"
@@ -232,10 +262,9 @@ def to_html(document: Document, svgs: list[str] | None = None, missing: str = ""
         if svgs is None:
             out.append(f'<div class="note warning"><strong>charts:</strong> {e(missing)}</div>')
         else:
-            for chart, svg in zip(document.charts, svgs, strict=True):
-                out.append(
-                    f"<figure>{_inline_svg(svg)}<figcaption>{e(chart.title)}</figcaption></figure>"
-                )
+            for number, (chart, svg) in enumerate(zip(document.charts, svgs, strict=True), 1):
+                caption = f"<strong>Figure {number}.</strong> {e(chart.title)}"
+                out.append(f"<figure>{_inline_svg(svg)}<figcaption>{caption}</figcaption></figure>")
         out.append("</section>")
     out.append(
         f"<footer>mdcalc {e(document.version)} · {e(report.problem)} · "
@@ -311,10 +340,10 @@ def to_markdown(document: Document, images: list[str] | None = None, missing: st
     for level, text in _notes(document):
         out += [f"> **{NOTE_LABELS[level].capitalize()}:** {_md(text)}", ""]
     if document.inputs:
-        out += ["## Inputs", ""]
-        header = ["key", "as written", "as computed with", "unit"]
-        out += _md_table(header, [list(row) for row in document.inputs])
-    for grid in grids(report):
+        out += [f"## {_md(document.inputs_title)}", ""]
+        inputs = _inputs_grid(document)
+        out += _md_table(_headers(inputs), inputs.rows)
+    for grid in _grids(document):
         out += [f"## {_md(grid.title)}", ""]
         out += _md_table(_headers(grid), grid.rows, grid.right, grid.strong)
     if document.charts:
@@ -322,8 +351,9 @@ def to_markdown(document: Document, images: list[str] | None = None, missing: st
         if images is None:
             out += [f"> **Charts:** {_md(missing)}", ""]
         else:
-            for chart, name in zip(document.charts, images, strict=True):
+            for number, (chart, name) in enumerate(zip(document.charts, images, strict=True), 1):
                 out += [f"![{_md(chart.title)}]({quote(name)})", ""]
+                out += [f"*Figure {number}.* {_md(chart.title)}", ""]
     out.append(
         f"*mdcalc {document.version} · {report.problem} · {_md(document.case_name)} · "
         f"{document.date}*"
@@ -390,13 +420,17 @@ def chart_files(path: Path, count: int) -> list[Path]:
 
 
 def write(run: Any, path: Path, force: bool) -> list[Path]:
-    """Write the report of ``run`` to ``path`` (.html or .md; for Markdown its chart
-    PNGs beside it), atomically; an existing file only with ``force``. Returns the
-    files written."""
+    """Write the report of ``run`` to ``path``: :func:`write_document`."""
+    return write_document(document_of(run), path, force)
+
+
+def write_document(document: Document, path: Path, force: bool) -> list[Path]:
+    """Write ``document`` to ``path`` (.html or .md; for Markdown its chart PNGs
+    beside it), atomically; an existing file only with ``force``. Returns the files
+    written."""
     from mdcalc.input.files import write_atomic
     from mdcalc.output.plot import chart_images, matplotlib_missing
 
-    document = document_of(run)
     missing = matplotlib_missing() if document.charts else None
     why = (missing or "").replace("--plot needs", "the charts need")
     markdown = path.suffix.lower() == ".md"
@@ -430,22 +464,23 @@ def html_of(document: Document) -> str:
     return to_html(document, svgs)
 
 
-def index_html(rows: list[tuple[str, str, str, str, str]]) -> str:
+def index_html(rows: list[tuple[str, str, str, str, str, str]]) -> str:
     """The page of a batch's reports (``run --report-dir``): one row per case file,
-    (case, problem, title, status, report file name or "")."""
+    (case, problem, title, status, report file name or "", why it has no answer or
+    no report or "")."""
     e = html.escape
     body = []
-    for case, problem, title, status, link in rows:
+    for case, problem, title, status, link, why in rows:
         name = f'<a href="{e(quote(link))}">{e(case)}</a>' if link else e(case)
         body.append(
             f'<tr class="{e(status)}"><td>{name}</td><td>{e(problem)}</td>'
-            f"<td>{e(title)}</td><td>{e(status)}</td></tr>"
+            f'<td>{e(title)}</td><td>{e(status)}</td><td class="col-note">{e(why)}</td></tr>'
         )
     return (
         '<!DOCTYPE html>\n<html lang="en">\n<head><meta charset="utf-8">'
         f"<title>mdcalc reports</title><style>{STYLE}</style></head>\n<body>\n"
         f"<h1>mdcalc reports</h1>\n<p>{len(rows)} case files · mdcalc {__version__}</p>\n"
         '<table class="index"><thead><tr><th>case file</th><th>problem</th><th>title</th>'
-        f"<th>status</th></tr></thead><tbody>{''.join(body)}</tbody></table>\n"
+        f"<th>status</th><th>why</th></tr></thead><tbody>{''.join(body)}</tbody></table>\n"
         "</body></html>\n"
     )

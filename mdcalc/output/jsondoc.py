@@ -1,4 +1,4 @@
-"""A report as JSON (``--json``, format 1; the layout is in :mod:`mdcalc.output.report`)
+"""A report as JSON (``--json``, format 2; the layout is in :mod:`mdcalc.output.report`)
 and as the TOML table of ``--save``."""
 
 from __future__ import annotations
@@ -16,6 +16,7 @@ from mdcalc.output.report import (
     Report,
     Table,
     Value,
+    ascii_unit,
 )
 
 
@@ -45,8 +46,14 @@ def _(section: Table) -> dict[str, Any]:
         "kind": "table",
         "title": section.title,
         "key": section.key,
-        "columns": [{"label": c.label, "unit": c.unit} for c in section.columns],
-        "rows": [[_json_value(v) for v in row] for row in section.rows],
+        "columns": [{"label": c.label, "unit": ascii_unit(c.unit)} for c in section.columns],
+        "rows": [
+            [
+                ascii_unit(v) if c.kind == "unit" and isinstance(v, str) else _json_value(v)
+                for v, c in zip(row, section.columns, strict=False)
+            ]
+            for row in section.rows
+        ],
     }
 
 
@@ -57,7 +64,7 @@ def _(section: MethodsTable) -> dict[str, Any]:
         "title": section.title,
         "key": section.key,
         "quantities": [
-            {"key": q.key, "label": q.label, "unit": q.unit} for q in section.quantities
+            {"key": q.key, "label": q.label, "unit": ascii_unit(q.unit)} for q in section.quantities
         ],
         "rows": [
             {
@@ -84,7 +91,7 @@ def to_json(report: Report, indent: int | None = 2) -> str:
         "status": report.status,
         "message": report.message,
         "results": {
-            key: {"value": _json_value(q.value), "unit": q.unit, "label": q.label}
+            key: {"value": _json_value(q.value), "unit": ascii_unit(q.unit), "label": q.label}
             for key, q in report.results().items()
             if key != "status"
         },
@@ -162,7 +169,7 @@ def saved_table(report: Report) -> dict[str, Any]:
     if report.message:
         table["message"] = report.message
     table["results"] = {q.key: q.value for q in quantities}
-    table["units"] = {q.key: q.unit for q in quantities if q.unit}
+    table["units"] = {q.key: ascii_unit(q.unit) for q in quantities if ascii_unit(q.unit)}
     methods = {
         s.key: [_saved_row(row) for row in s.rows]
         for s in report.sections

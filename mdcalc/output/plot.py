@@ -11,14 +11,82 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Literal
+from typing import Any, Literal
 
 from mdcalc.errors import InputError, Problem
 from mdcalc.input.files import write_atomic
 
 FORMATS = (".png", ".svg", ".pdf")
 
-Style = Literal["line", "dashed", "dotted", "points", "step", "bars"]
+#: What a series is, which decides how it is drawn (:data:`SERIES_STYLES`).
+Role = Literal[
+    "result",  # this case's curve (solid; colours from the cycle)
+    "comparison",  # a simpler method's curve, or the state before (dashed)
+    "secondary",  # a further quantity or family on the same axes (dotted)
+    "envelope",  # a bound the response keeps within
+    "limit",  # a limit the result is held against (a curve)
+    "load",  # a load or resistance the scene works against
+    "excitation",  # what drives the scene at a frequency (engine orders)
+    "this-case",  # the case's own point(s)
+    "event",  # points where something happens (slack, lift-off): a group per kind
+    "nodes",  # a method's values at its nodes (Kovylin's (5))
+    "measured",  # measured points
+    "histogram",  # a histogram's steps
+    "bars",  # horizontal bars (indices)
+]
+#: What a reference line is (:data:`MARK_STYLES`).
+MarkRole = Literal[
+    "static",  # the static value
+    "reported",  # a value the report gives
+    "limit",  # a limit the result is held against
+    "this-case",  # the case's own value
+    "design",  # a design or operating point
+    "resonance",  # a resonance
+    "advice",  # a rule of thumb
+    "range",  # the edges of a range or span
+    "event",  # the time of an event
+    "mean",  # a mean level (of a fluctuating speed)
+]
+
+#: Every look of a chart, keyed by meaning: the one place a colour or line style is
+#: set (``tests/test_plots.py`` fails on any other). Series without a colour take the
+#: cycle's (:data:`CYCLE`: none of the colours below, which mean something here).
+SERIES_STYLES: dict[str, dict[str, Any]] = {
+    "result": {"linestyle": "-", "linewidth": 1.5},
+    "comparison": {"linestyle": "--", "linewidth": 1.3},
+    "secondary": {"linestyle": ":", "linewidth": 1.6},
+    "envelope": {"linestyle": "--", "linewidth": 1.0, "color": "darkorange"},
+    "limit": {"linestyle": ":", "linewidth": 1.6, "color": "firebrick"},
+    "load": {"linestyle": "-", "linewidth": 1.3, "color": "saddlebrown"},
+    "excitation": {"linestyle": (0, (6, 2, 1, 2)), "linewidth": 1.0},
+    "this-case": {"linestyle": "none", "marker": "o", "markersize": 7, "color": "crimson",
+                  "zorder": 5},
+    "event": {"linestyle": "none", "marker": "D", "markersize": 5, "zorder": 4},
+    "nodes": {"linestyle": "none", "marker": "o", "markersize": 3, "zorder": 4},
+    "measured": {"linestyle": "none", "marker": "x", "markersize": 7, "color": "black",
+                 "zorder": 4},
+    "histogram": {"drawstyle": "steps-post", "linewidth": 1.2, "color": "steelblue"},
+    "bars": {"color": "steelblue"},
+}  # fmt: skip
+MARK_STYLES: dict[str, dict[str, Any]] = {
+    "static": {"linestyle": "-.", "color": "dimgrey", "linewidth": 1.0},
+    "reported": {"linestyle": "--", "color": "black", "linewidth": 1.0},
+    "limit": {"linestyle": ":", "color": "firebrick", "linewidth": 1.6},
+    "this-case": {"linestyle": "--", "color": "crimson", "linewidth": 1.0},
+    "design": {"linestyle": "-", "color": "black", "linewidth": 0.8, "alpha": 0.7},
+    "resonance": {"linestyle": "-", "color": "tab:red", "linewidth": 1.0, "alpha": 0.5},
+    "advice": {"linestyle": ":", "color": "seagreen", "linewidth": 1.6},
+    "range": {"linestyle": ":", "color": "grey", "linewidth": 1.0},
+    "event": {"linestyle": "-.", "color": "teal", "linewidth": 1.0},
+    "mean": {"linestyle": (0, (1, 2)), "color": "black", "linewidth": 1.2},
+}
+CYCLE = ("tab:blue", "tab:purple", "tab:olive", "tab:pink", "tab:cyan", "navy")
+#: How a curve of one point is drawn (a sweep of one height), by its role.
+ONE_POINT = {
+    "result": {"marker": "o"},
+    "comparison": {"marker": "o", "markerfacecolor": "none"},
+    "secondary": {"marker": "s", "markerfacecolor": "none"},
+}
 
 
 @dataclass(frozen=True)
@@ -28,7 +96,9 @@ class Series:
     label: str
     x: Sequence[float]
     y: Sequence[float]
-    style: Style = "line"
+    role: Role = "result"
+    #: Series of one group share a colour (a quantity and its approximation).
+    group: str = ""
 
 
 @dataclass(frozen=True)
@@ -38,6 +108,7 @@ class Mark:
     axis: Literal["x", "y"]
     value: float
     label: str = ""
+    role: MarkRole = "range"
 
 
 @dataclass(frozen=True)
@@ -92,17 +163,7 @@ def render(charts: Sequence[Chart], path: Path, title: str = "", replace: bool =
     """Draw ``charts`` one under another into ``path`` (its suffix is the format),
     atomically (:func:`mdcalc.input.files.write_atomic`); ``replace`` False: only if no
     file is there."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    from matplotlib.figure import Figure
-
-    figure = Figure(figsize=(7.5, 3.4 * len(charts) + (0.4 if title else 0.0)), layout="tight")
-    axes = figure.subplots(len(charts), 1, squeeze=False)[:, 0]
-    for ax, chart in zip(axes, charts, strict=True):
-        _draw(ax, chart)
-    if title:
-        figure.suptitle(title, fontsize=11)
+    figure = figure_of(charts, title)
     fmt = path.suffix.lower().lstrip(".")
     write_atomic(
         path,
@@ -112,20 +173,70 @@ def render(charts: Sequence[Chart], path: Path, title: str = "", replace: bool =
     )
 
 
+def figure_of(charts: Sequence[Chart], title: str = "", titled: bool = True) -> Any:
+    """A matplotlib Figure of ``charts`` one under another (Agg), laid out by
+    matplotlib's constrained layout: a figure title keeps its own space, and each
+    legend stands where it covers no drawn line (:func:`_place_legend`). ``titled``
+    False: no chart titles (a document's caption gives them)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from cycler import cycler
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    height = 3.6 if len(charts) == 1 else 3.4 * len(charts)
+    with matplotlib.rc_context({"axes.prop_cycle": cycler(color=list(CYCLE))}):
+        figure = Figure(figsize=(7.5, height + (0.4 if title else 0.0)), layout="constrained")
+        axes = figure.subplots(len(charts), 1, squeeze=False)[:, 0]
+        groups: dict[str, str] = {}  # a group's colour, the same in every chart
+        for ax, chart in zip(axes, charts, strict=True):
+            _draw(ax, chart, titled, groups)
+    if title:
+        figure.suptitle(title, fontsize=11)
+    renderer = FigureCanvasAgg(figure).get_renderer()
+    # (a shaded map has no free area: its legend stands below it)
+    legends = [
+        (ax, chart.shade is None)
+        for ax, chart in zip(axes, charts, strict=True)
+        if any(s.label for s in chart.series) or any(m.label for m in chart.marks)
+    ]
+    # A legend placed below its axes shrinks the axes, which may bring a line under a
+    # legend placed inside another: placed again until none covers a line.
+    for _ in range(3):
+        figure.draw_without_rendering()  # the layout settled before the legends are placed
+        misplaced = [(ax, free) for ax, free in legends if _misplaced(ax, renderer, free)]
+        if not misplaced:
+            break
+        below = [_place_legend(ax, renderer, free) for ax, free in misplaced]
+        if not any(below):  # legends inside change no layout: nothing has moved
+            break
+    return figure
+
+
+def _misplaced(ax: Any, renderer: Any, free: bool) -> bool:
+    """Has ``ax`` no legend yet, or one inside that covers a line or point (or any
+    legend inside where the axes have no ``free`` area)?"""
+    legend = ax.get_legend()
+    if legend is None:
+        return True
+    inside = legend.get_bbox_to_anchor() is ax.bbox  # (one below has its own anchor)
+    if inside and not free:
+        return True
+    return inside and covers(legend.get_window_extent(renderer), drawn_shapes(ax))
+
+
 def chart_images(charts: Sequence[Chart], fmt: Literal["svg", "png"]) -> list[bytes]:
-    """Each chart drawn on its own, as SVG (text as paths, no date, no external
-    resource: it goes inline into an HTML report) or PNG bytes."""
+    """Each chart drawn on its own, without its title (the document's caption gives
+    it), as SVG (text as paths, no date, no external resource: it goes inline into an
+    HTML report) or PNG bytes."""
     import io
 
     import matplotlib
 
-    matplotlib.use("Agg")
-    from matplotlib.figure import Figure
-
     images = []
     for chart in charts:
-        figure = Figure(figsize=(7.0, 3.6), layout="tight")
-        _draw(figure.subplots(), chart)
+        figure = figure_of([chart], titled=False)
         buffer = io.BytesIO()
         with matplotlib.rc_context({"svg.hashsalt": "mdcalc", "svg.fonttype": "path"}):
             figure.savefig(
@@ -141,45 +252,129 @@ def chart_images(charts: Sequence[Chart], fmt: Literal["svg", "png"]) -> list[by
     return images
 
 
-_STYLES = {"line": "-", "dashed": "--", "dotted": ":"}
-
-
-def _draw(ax: object, chart: Chart) -> None:
-    from typing import Any
-
-    a: Any = ax
+def _draw(ax: Any, chart: Chart, titled: bool, groups: dict[str, str]) -> None:
     if chart.shade is not None:
         s = chart.shade
         if s.levels is not None:
-            filled = a.contourf(s.x, s.y, s.z, levels=list(s.levels), cmap="Greys", alpha=0.5)
+            ax.contourf(s.x, s.y, s.z, levels=list(s.levels), cmap="Greys", alpha=0.5)
         else:
-            filled = a.pcolormesh(s.x, s.y, s.z, shading="auto", cmap="viridis")
-            a.figure.colorbar(filled, ax=a, label=s.label)
+            filled = ax.pcolormesh(s.x, s.y, s.z, shading="auto", cmap="viridis")
+            ax.figure.colorbar(filled, ax=ax, label=s.label)
+    # Colours from the cycle: a chart's series from its start, a named group (a kind of
+    # event, a quantity and its approximation) from its end, the same in every chart.
+    plain = 0
     for series in chart.series:
-        if series.style == "points":
-            a.plot(series.x, series.y, "o", markersize=3, label=series.label)
-        elif series.style == "bars":  # horizontal: x the lengths, y the positions
-            a.barh(series.y, series.x, color="steelblue", label=series.label or None)
-        elif series.style == "step":
-            a.step(series.x, series.y, where="post", label=series.label)
+        look = dict(SERIES_STYLES[series.role])
+        if "color" not in look and series.group:
+            look["color"] = groups.setdefault(series.group, CYCLE[-1 - len(groups) % len(CYCLE)])
+        elif "color" not in look:
+            look["color"] = CYCLE[plain % len(CYCLE)]
+            plain += 1
+        if len(series.x) == 1 and "marker" not in look:
+            look |= ONE_POINT.get(series.role, {})
+        if series.role == "bars":  # horizontal: x the lengths, y the positions
+            ax.barh(series.y, series.x, label=series.label or None, **look)
         else:
-            a.plot(series.x, series.y, _STYLES[series.style], label=series.label)
+            ax.plot(series.x, series.y, label=series.label, **look)
     labelled: set[str] = set()  # one legend entry per label (upshift, upshift, ...)
     for mark in chart.marks:
-        line = a.axhline if mark.axis == "y" else a.axvline
-        look = ("-.", "firebrick") if mark.axis == "y" else (":", "dimgrey")
+        line = ax.axhline if mark.axis == "y" else ax.axvline
         label = mark.label if mark.label and mark.label not in labelled else None
         labelled.add(mark.label)
-        line(mark.value, linestyle=look[0], color=look[1], linewidth=1, alpha=0.8, label=label)
+        line(mark.value, label=label, **MARK_STYLES[mark.role])
     if chart.ticks is not None:
-        a.set_yticks(range(len(chart.ticks)), chart.ticks, fontsize=8)
+        ax.set_yticks(range(len(chart.ticks)), chart.ticks, fontsize=8)
     if chart.x_log:
-        a.set_xscale("log")
+        ax.set_xscale("log")
     if chart.y_log:
-        a.set_yscale("log")
-    a.set_title(chart.title, fontsize=10)
-    a.set_xlabel(chart.x_label)
-    a.set_ylabel(chart.y_label)
-    a.grid(True, alpha=0.3)
-    if any(s.label for s in chart.series) or any(m.label for m in chart.marks):
-        a.legend(fontsize=8, framealpha=0.7)  # see the curve under a legend
+        ax.set_yscale("log")
+    if titled:
+        ax.set_title(chart.title, fontsize=10, wrap=True)
+    ax.set_xlabel(chart.x_label)
+    ax.set_ylabel(chart.y_label)
+    ax.grid(True, alpha=0.3)
+
+
+#: Where a legend may stand inside its axes, in the order tried.
+_INSIDE = (
+    "upper right", "upper left", "lower right", "lower left",
+    "center right", "center left", "upper center", "lower center", "center",
+)  # fmt: skip
+
+
+def _place_legend(ax: Any, renderer: Any, free: bool = True) -> bool:
+    """A legend inside the axes where it covers no drawn line or point (if the axes
+    have ``free`` area at all), else below the axes (the constrained layout makes
+    room; True)."""
+    if ax.get_legend() is not None:
+        ax.get_legend().remove()
+    if free:
+        shapes = drawn_shapes(ax)
+        legend = ax.legend(loc=_INSIDE[0], fontsize=8, framealpha=0.9)
+        for loc in _INSIDE:
+            legend.set_loc(loc)
+            if not covers(legend.get_window_extent(renderer), shapes):
+                return False
+        legend.remove()
+    from matplotlib.transforms import offset_copy
+
+    # Below the tick labels and the axis label, a fixed distance in points from the
+    # axes (the layout may still change the axes' height).
+    below = ax.get_tightbbox(renderer).y0
+    drop = (ax.get_window_extent(renderer).y0 - below) / renderer_points(ax) + 4.0
+    for columns in (2, 1) if len(ax.get_legend_handles_labels()[0]) > 3 else (1,):
+        legend = ax.legend(
+            loc="upper center",
+            bbox_to_anchor=(0.5, 0.0),
+            bbox_transform=offset_copy(ax.transAxes, ax.figure, y=-drop, units="points"),
+            fontsize=8,
+            framealpha=0.9,
+            ncols=columns,
+        )
+        if legend.get_window_extent(renderer).width <= 0.96 * ax.figure.bbox.width:
+            break
+    return True
+
+
+def drawn_shapes(ax: Any) -> list[tuple[Any, float]]:
+    """Each line of ``ax`` as a path in display units, with the half-size of its
+    markers (0 for a plain line); a step line as the steps drawn."""
+    import numpy as np
+    from matplotlib.path import Path as MplPath
+
+    shapes = []
+    for line in ax.get_lines():
+        xy = line.get_xydata()
+        if len(xy) == 0:
+            continue
+        points = line.get_transform().transform(np.asarray(xy, dtype=float))
+        if str(line.get_drawstyle()).startswith("steps"):
+            points = np.repeat(points, 2, axis=0)[1:-1]
+            points[1::2, 1] = points[0::2, 1]
+        points = points[np.all(np.isfinite(points), axis=1)]
+        if len(points) == 0:
+            continue
+        marker = line.get_marker() not in (None, "None", "none", "", " ")
+        size = line.get_markersize() * renderer_points(ax) / 2.0 if marker else 0.0
+        if line.get_linestyle() in ("None", "none", "", " "):
+            shapes += [(MplPath(points[k : k + 1]), size) for k in range(len(points))]
+        else:
+            shapes.append((MplPath(points), size))
+    return shapes
+
+
+def renderer_points(ax: Any) -> float:
+    """Display units (pixels) per typographic point of the figure of ``ax``."""
+    return float(ax.figure.dpi) / 72.0
+
+
+def covers(box: Any, shapes: list[tuple[Any, float]]) -> bool:
+    """Does the display box ``box`` (a legend's) cover any of ``shapes``?"""
+    for path, size in shapes:
+        grown = box.expanded(1.0, 1.0).padded(size) if size else box
+        if len(path.vertices) == 1:
+            if grown.contains(*path.vertices[0]):
+                return True
+        elif path.intersects_bbox(grown, filled=False):
+            return True
+    return False

@@ -14,9 +14,10 @@ new section type adds one function to each and nothing else changes: here
 HTML and Markdown (:mod:`mdcalc.output.document`) lay out, and in
 :mod:`mdcalc.output.jsondoc` the JSON.
 
-JSON layout (``format`` 1, stable; documented in docs/contract.md)::
+JSON layout (``format`` 2, stable; documented in docs/contract.md; units in the
+ASCII form pint reads, :func:`ascii_unit`)::
 
-    {"mdcalc": "0.1.0", "format": 1, "problem": "braking", "case": "x.toml",
+    {"mdcalc": "0.1.0", "format": 2, "problem": "braking", "case": "x.toml",
      "title": "...", "status": "ok" | "no-answer", "message": null | "...",
      "results": {"<key>": {"value": 35.3, "unit": "m", "label": "..."}, ...},
      "sections": [{"kind": "quantities" | "table" | "methods", ...}, ...],
@@ -34,7 +35,8 @@ from typing import Any, Literal
 #: A result's value; a tuple is a list of numbers (gear ratios), an array in JSON.
 Value = float | int | str | bool | tuple[float, ...]
 Status = Literal["ok", "no-answer"]
-JSON_FORMAT = 1
+#: 2: units in ASCII (``kg*m^2``); 1 wrote them as shown (``kg·m²``).
+JSON_FORMAT = 2
 
 
 @dataclass(frozen=True)
@@ -58,6 +60,16 @@ class Quantities:
 class Column:
     label: str
     unit: str = ""
+    #: How a cell is shown: "exact", a number with every digit that matters
+    #: (:func:`exact_text`), not five (a value converted from what a case file wrote,
+    #: checked by eye against it); "quantity", a quantity string as written, its units
+    #: as a person reads them (:func:`pretty_unit`); "unit", a unit (the JSON writes
+    #: it in ASCII, :func:`ascii_unit`). The cells themselves keep the data.
+    kind: Literal["", "exact", "quantity", "unit"] = ""
+
+
+#: The key of a report's table of the values a case file wrote with units.
+UNITS_KEY = "units"
 
 
 @dataclass
@@ -66,6 +78,9 @@ class Table:
     key: str
     columns: list[Column]
     rows: list[list[Value]]
+    #: Each row is another quantity (a study's results): a column holds numbers of
+    #: different units, so none is rounding noise of another.
+    rows_differ: bool = False
 
 
 @dataclass(frozen=True)
@@ -153,6 +168,48 @@ def format_value(value: Value | None, digits: int = 5) -> str:
         text = f"{value:.{decimals}f}"
         return text.rstrip("0").rstrip(".") if "." in text else text
     return f"{value:.{digits - 1}e}"
+
+
+#: Superscript digits and signs, as a person reads a power (kg·m², 1/s²).
+_SUPERSCRIPT = str.maketrans("0123456789-+n", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻⁺ⁿ")
+_PLAIN = {v: k for k, v in zip("0123456789-+n", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻⁺ⁿ", strict=True)}
+#: Units whose shown form pint reads otherwise: "g" is the gram to pint.
+_ASCII_NAMES = {"g": "g_0", "×": ""}
+
+
+def ascii_unit(unit: str) -> str:
+    """A unit as the JSON writes it: ASCII that pint parses to the same unit
+    (``kg·m²`` → ``kg*m^2``, ``1/s²`` → ``1/s^2``, ``N·m/radⁿ`` → ``N*m/rad^n``,
+    ``g`` (standard gravity) → ``g_0``, ``×`` (a ratio) → ``""``)."""
+    import re
+
+    if unit in _ASCII_NAMES:
+        return _ASCII_NAMES[unit]
+    text = unit.replace("·", "*")
+    return re.sub("[⁰¹²³⁴⁵⁶⁷⁸⁹⁻⁺ⁿ]+", lambda m: "^" + "".join(_PLAIN[c] for c in m.group(0)), text)
+
+
+def pretty_unit(text: str) -> str:
+    """A unit (or a quantity string) written in ASCII as a person reads it, in the
+    order written: ``t*m**2`` → ``t·m²``, ``N * m/deg`` → ``N·m/deg``, ``s^-1`` → ``s⁻¹``
+    (a power that is not a whole number stays ``^0.5``)."""
+    import re
+
+    if text == "g_0":  # the JSON's standard gravity
+        return "g"
+
+    def power(match: re.Match[str]) -> str:
+        return match.group(1).translate(_SUPERSCRIPT)
+
+    out = re.sub(r"\s*(?:\*\*|\^)\s*([-+]?\d+)(?![\d.])", power, text)
+    out = re.sub(r"\s*\*\*\s*", "^", out)
+    return re.sub(r"\s*\*\s*", "·", out)
+
+
+def exact_text(value: float) -> str:
+    """A number with the digits to check a conversion by eye (12 significant, float
+    noise gone): ``18609.2 kN·m/rad`` → ``18609200``, not ``1.8609e+07``."""
+    return f"{value:.12g}"
 
 
 def format_error(error: float | None) -> str:
@@ -267,13 +324,20 @@ def _(section: Table) -> Grid:
         not (i < len(first) and isinstance(first[i], str)) for i in range(len(section.columns))
     ]
     header = [f"{c.label} ({c.unit})" if c.unit else c.label for c in section.columns]
-    scales = _column_scales(section.rows)
-    rows = [
-        [format_value(_rounding_noise_as_zero(v, k)) for v, k in zip(row, scales, strict=False)]
-        for row in section.rows
-    ]
+    scales = [0.0] * len(section.columns) if section.rows_differ else _column_scales(section.rows)
+    kinds = [c.kind for c in section.columns]
+    rows = [[_cell(v, k, kind) for v, k, kind in zip(row, scales, kinds, strict=False)]
+            for row in section.rows]  # fmt: skip
     roles: list[Role] = ["cell"] * len(section.columns)
     return Grid(section.title, header, rows, right, roles, [False] * len(rows), "table")
+
+
+def _cell(value: Value, scale: float, kind: str) -> str:
+    if kind == "exact" and isinstance(value, float):
+        return exact_text(value)
+    if kind == "quantity" and isinstance(value, str):
+        return pretty_unit(value)
+    return format_value(_rounding_noise_as_zero(value, scale))
 
 
 #: A number this much smaller than the largest of its column is rounding noise of a

@@ -44,7 +44,7 @@ from mdcalc.output.report import (
 )
 
 if TYPE_CHECKING:
-    from mdcalc.output.plot import Chart, Style
+    from mdcalc.output.plot import Chart, Role
 
 UNBOUNDED = "unbounded"
 
@@ -515,13 +515,13 @@ def charts(result: Result) -> list[Chart]:
     driven = curves.driven_ratios if curves.driven_ratios is not None else [fr.eta2]
     driving = curves.driving_ratios if curves.driving_ratios is not None else [fr.eta1]
     # (label, style, η₁, η₂); None: the η of the axis.
-    wanted: list[tuple[str, Style, float | None, float | None]] = [
-        *((f"η₁ = η, η₂ = {_eta_text(e)}", "line", None, e) for e in driven),
-        *((f"η₂ = η, η₁ = {_eta_text(e)}", "dashed", e, None) for e in driving),
-        ("η₁ = η₂ = η (27)", "dotted", None, None),
+    wanted: list[tuple[str, Role, float | None, float | None]] = [
+        *((f"η₁ = η, η₂ = {_eta_text(e)}", "result", None, e) for e in driven),
+        *((f"η₂ = η, η₁ = {_eta_text(e)}", "secondary", e, None) for e in driving),
+        ("η₁ = η₂ = η (27)", "comparison", None, None),
     ]
     series: list[Series] = []
-    for label, style, eta1, eta2 in wanted:
+    for label, role, eta1, eta2 in wanted:
         points = [
             (
                 eta,
@@ -533,7 +533,7 @@ def charts(result: Result) -> list[Chart]:
         ]
         points = [(eta, c) for eta, c in points if math.isfinite(c)]  # η₂ = 1: unbounded
         if points:
-            series.append(Series(label, [p[0] for p in points], [p[1] for p in points], style))
+            series.append(Series(label, [p[0] for p in points], [p[1] for p in points], role))
     if not series:
         return []
     inside = [e for e in dict.fromkeys((fr.eta2, fr.eta1)) if low <= e <= high]
@@ -548,20 +548,30 @@ def charts(result: Result) -> list[Chart]:
                 f"this case: C_max = {result.bound:.4g}",
                 on_curves,
                 [result.bound] * len(on_curves),
-                "points",
+                "this-case",
             )
         )
-    marks: list[Mark] = []
-    for e in inside:
-        name = "η₁ = η₂" if fr.eta1 == fr.eta2 else ("η₂" if e == fr.eta2 else "η₁")
-        marks.append(Mark("x", e, f"{name} = {_eta_text(e)} (this case)"))
+    names = [
+        f"{'η₁ = η₂' if fr.eta1 == fr.eta2 else ('η₂' if e == fr.eta2 else 'η₁')} = {_eta_text(e)}"
+        for e in inside
+    ]
+    # one legend entry for the case's ratios (one look, one meaning)
+    label = f"this case: {', '.join(names)}" if names else ""
+    marks = [Mark("x", e, label if k == 0 else "", "this-case") for k, e in enumerate(inside)]
     values = [c for s in series for c in s.y]
     top, bottom = max(values), min(values)
     y_log = bottom > 0.0 and top / bottom > 50.0
     if case.clutch is not None:
         gain = case.clutch.feedback
         if (gain > 0.0 or not y_log) and gain <= 1.5 * top:  # else it would flatten the curves
-            marks.append(Mark("y", gain, f"gain C = {gain:.4g} (this clutch)"))
+            marks.append(
+                Mark(
+                    "y",
+                    gain,
+                    f"gain C = {gain:.4g} of this clutch: stable where C_max is above",
+                    "limit",
+                )
+            )
     unbounded = "; this case: η₂ = 1, stable at every gain" if math.isinf(result.bound) else ""
     return [
         Chart(

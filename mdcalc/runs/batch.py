@@ -161,6 +161,11 @@ def run_study_file(case: Any, options: RunOptions) -> Outcome:
         outcome.json = to_json(result, indent=None)
     if options.text:
         outcome.text = _rendered(lambda console: render_rich(result, console), options)
+    if options.document:
+        from mdcalc.output.document import html_of
+        from mdcalc.runs.study.output import study_document
+
+        outcome.document = html_of(study_document(result))
     return outcome
 
 

@@ -15,7 +15,14 @@ from typing import Any
 from mdcalc.core import budget
 from mdcalc.errors import InputError, Problem
 from mdcalc.input.casefile import CaseText, Conversion, dotted, read_case, validate
-from mdcalc.output.report import Column, Note, Report, Table, first_non_finite
+from mdcalc.output.report import (
+    UNITS_KEY,
+    Column,
+    Note,
+    Report,
+    Table,
+    first_non_finite,
+)
 from mdcalc.problems import PROBLEMS, ProblemSpec
 
 
@@ -192,7 +199,12 @@ def units_section(conversions: list[Conversion]) -> Table:
     """The numbers the case file wrote with units, as written and as computed with."""
     return Table(
         "Inputs written with units",
-        "units",
-        [Column("key"), Column("as written"), Column("value"), Column("unit")],
-        [[dotted(c.loc), c.written, c.value, c.unit or "-"] for c in conversions],
+        UNITS_KEY,
+        [
+            Column("key"),
+            Column("as written", kind="quantity"),
+            Column("value", kind="exact"),
+            Column("unit", kind="unit"),
+        ],
+        [[dotted(c.loc), c.written, c.value, c.unit] for c in conversions],
     )

@@ -33,6 +33,7 @@ from mdcalc.input.casefile import (  # get_key, set_key: the sweep's and the stu
     validate,
 )
 from mdcalc.input.model import DECLINED
+from mdcalc.output.report import JSON_FORMAT, Report, ascii_unit
 from mdcalc.runs.cluster import PoolMapper
 from mdcalc.runs.kernel import BLOCK
 from mdcalc.runs.runner import problem_of, solve_model
@@ -284,14 +285,17 @@ def key_results(
     results: Sequence[str],
     where: str,
     time_limit: float | None = DEFAULT_SECONDS,
+    report: Report | None = None,
 ) -> tuple[list[str], dict[str, str]]:
     """The result keys and the units of every numeric result, from a run of the base
-    scene. By default the key results: the quantities of the report's Methods tables
-    (all numeric results where it has none). Asked-for ``results`` must be numeric
-    results (else :class:`InputError` at ``where``)."""
+    scene (or its ``report``, where it has run). By default the key results: the
+    quantities of the report's Methods tables (all numeric results where it has
+    none). Asked-for ``results`` must be numeric results (else :class:`InputError` at
+    ``where``)."""
     from mdcalc.output.report import MethodsTable
 
-    _, report = solve_model(problem, module, model, time_limit)
+    if report is None:
+        _, report = solve_model(problem, module, model, time_limit)
     numeric = _numeric(report)
     units = {key: unit for key, (_, unit) in numeric.items()}
     unknown = [k for k in results if k not in numeric]
@@ -501,14 +505,14 @@ def to_json(table: Table, sweep: Plan) -> bytes:
 
     document = {
         "mdcalc": __version__,
-        "format": 1,
+        "format": JSON_FORMAT,
         "problem": sweep.problem,
         "case": str(sweep.case.path),
         "vary": [
             {"key": v.key, "start": v.start, "stop": v.stop, "n": v.count} for v in sweep.varies
         ],
         "vectorized": table.vectorized,
-        "columns": [{"key": k, "unit": table.units.get(k, "")} for k in table.keys],
+        "columns": [{"key": k, "unit": ascii_unit(table.units.get(k, ""))} for k in table.keys],
         # orjson takes C-contiguous arrays only; a point-by-point column may be a view.
         "values": {k: np.ascontiguousarray(table.columns[k], dtype=float) for k in table.keys},
         "status": np.asarray(table.status, dtype=np.int64),

@@ -60,12 +60,15 @@ def _speed_chart(result: Result, run: Run) -> Chart:
                 clock += scene.shift_time
                 lecture_t.append(clock)
                 lecture_v.append(v1 * 3.6)
-        series.append(Series("lecture method (7.40)-(7.42)", lecture_t, lecture_v, "dashed"))
+        series.append(Series("lecture method (7.40)-(7.42)", lecture_t, lecture_v, "comparison"))
     shifts = [p for p in run.phases if p.kind == "shift"]
     marks = [
-        Mark("x", p.t_end - p.duration, "upshift" if k == 0 else "") for k, p in enumerate(shifts)
+        Mark("x", p.t_end - p.duration, "upshift" if k == 0 else "", "event")
+        for k, p in enumerate(shifts)
     ]
-    marks.append(Mark("y", scene.target * 3.6, f"target {scene.target * 3.6:.4g} km/h"))
+    marks.append(
+        Mark("y", scene.target * 3.6, f"target {scene.target * 3.6:.4g} km/h", "this-case")
+    )
     return Chart(
         f"Speed against time: {scene.target * 3.6:.4g} km/h in {run.time:.4g} s "
         f"(gear {run.phases[-1].gear + 1} at the target)",
@@ -101,11 +104,11 @@ def _traction_chart(result: Result) -> Chart:
     road = [v_end * k / GEAR_POINTS for k in range(GEAR_POINTS + 1)]
     name = "resistance ψ·m·g + k·v²" if scene.drag > 0.0 else "resistance ψ·m·g"
     series.append(
-        Series(name, [v * 3.6 for v in road], [scene.resistance(v) for v in road], "dashed")
+        Series(name, [v * 3.6 for v in road], [scene.resistance(v) for v in road], "load")
     )
     if scene.phi is not None:
         grip = [scene.adhesion_force(v) for v in road]
-        series.append(Series("adhesion limit φ·N", [v * 3.6 for v in road], grip, "dotted"))
+        series.append(Series("adhesion limit φ·N", [v * 3.6 for v in road], grip, "limit"))
     upshifts = [s for s in result.plan.stints if s.shift_after]
     if upshifts:
         series.append(
@@ -116,13 +119,13 @@ def _traction_chart(result: Result) -> Chart:
                     scene.engine_force(s.gear, s.v_end, scene.slipping_at(s.gear, s.v_end))
                     for s in upshifts
                 ],
-                "points",
+                "event",
             )
         )
-    marks = [Mark("x", scene.target * 3.6, f"target {scene.target * 3.6:.4g} km/h")]
+    marks = [Mark("x", scene.target * 3.6, f"target {scene.target * 3.6:.4g} km/h", "this-case")]
     top = result.top.limit.speed
     if result.status != "ok" and top > 0.0:
-        marks.append(Mark("x", top * 3.6, f"top speed {top * 3.6:.4g} km/h"))
+        marks.append(Mark("x", top * 3.6, f"top speed {top * 3.6:.4g} km/h", "limit"))
     return Chart(
         f"Traction diagram: F_t = M_e·U_i·U_K·η/r, engine {scene.launch * RAD_S_TO_RPM:.0f}"
         f"–{scene.limit * RAD_S_TO_RPM:.0f} rpm",

@@ -104,23 +104,17 @@ def _step_chart(s: Scene) -> Chart:
     ]
     if zeta < 1.0:
         upper = sdof.step_envelope(times, beta, zeta)
-        # one outline, the upper edge out and the lower edge back: one colour, one entry
-        outline = [*upper.tolist(), *(2.0 - upper)[::-1].tolist()]
-        series.append(
-            Series(
-                "envelope 1 ± e^(-pt/2), through the peaks",
-                [*x, *x[::-1]],
-                outline,
-                "dashed",
-            )
-        )
+        # the upper and the lower edge: two curves, one legend entry
+        envelope = "envelope 1 ± e^(-pt/2), through the peaks"
+        series.append(Series(envelope, x, upper.tolist(), "envelope"))
+        series.append(Series("", x, (2.0 - upper).tolist(), "envelope"))
         at = [tau, 1.5 * tau]
         series.append(
             Series(
                 "envelope at τ, 1.5·τ (report)",
                 at,
                 [sdof.step_envelope(t, beta, zeta) for t in at],
-                "points",
+                "event",
             )
         )
     if peak_time is not None:
@@ -130,7 +124,7 @@ def _step_chart(s: Scene) -> Chart:
                 f"first peak {factor:.5g} at π/β₁ = {peak_time:.4g} s (report)",
                 [peak_time],
                 [factor],
-                "points",
+                "this-case",
             )
         )
     words = _damping_words(s)
@@ -141,7 +135,7 @@ def _step_chart(s: Scene) -> Chart:
         "t [s]",
         "φ/φ_st, φ_st = M₀/c [-]",
         series,
-        [Mark("y", 1.0, "static, φ/φ_st = 1")],
+        [Mark("y", 1.0, "static, φ/φ_st = 1", "static")],
     )
 
 
@@ -176,26 +170,28 @@ def _harmonic_chart(h: Harmonic, s: Scene, ok: bool) -> Chart:
     curve = np.where(np.isfinite(twist), np.minimum(twist, ceiling), ceiling)
     x = lams.tolist()
     series = [Series("φ_max(λ) = M/√((β² - ω²)² + p²ω²) (8.27)", x, curve.tolist())]
-    marks = [Mark("y", static, f"static twist M/β² = {static:.4g} rad")]
+    marks = [Mark("y", static, f"static twist M/β² = {static:.4g} rad", "static")]
     if resonant:
         series.append(
             Series(
                 f"resonance peak {float(peak):.4g} rad, M/(β²γ√(1 - γ²/4))",
                 [float(ratio)],
                 [float(peak)],
-                "points",
+                "event",
             )
         )
-        marks.append(Mark("x", float(ratio), f"resonance λ = √(1 - γ²/2) = {float(ratio):.4g}"))
+        marks.append(
+            Mark("x", float(ratio), f"resonance λ = √(1 - γ²/2) = {float(ratio):.4g}", "resonance")
+        )
     elif s.p == 0.0:
-        marks.append(Mark("x", 1.0, "resonance λ = 1 (undamped: unbounded)"))
+        marks.append(Mark("x", 1.0, "resonance λ = 1 (undamped: unbounded)", "resonance"))
     if ok:
         series.append(
-            Series(f"this case: λ = {lam:.4g}, φ_max = {own[0]:.4g} rad", [lam], own, "points")
+            Series(f"this case: λ = {lam:.4g}, φ_max = {own[0]:.4g} rad", [lam], own, "this-case")
         )
     else:
-        marks.append(Mark("x", lam, f"this case: λ = {lam:.4g}, unbounded"))
-    marks.append(Mark("x", 1.5, "advice: λ > 1.5"))
+        marks.append(Mark("x", lam, f"this case: λ = {lam:.4g}, unbounded", "this-case"))
+    marks.append(Mark("x", 1.5, "advice: λ > 1.5", "advice"))
     words = f"undamped, clipped at {CHART_CLIP:g}·M/β²" if s.p == 0.0 else f"γ = p/β = {gamma:.4g}"
     y_log = float(curve.min()) > 0.0 and float(curve.max()) > CHART_DECADE * float(curve.min())
     return Chart(
@@ -231,10 +227,10 @@ def _transient_chart(s: Scene, transient: Transient, factor: float, when: float)
         "φ/φ_st, φ_st = M_max/c [-]",
         [
             Series("φ/φ_st, exact Duhamel response", times.tolist(), factors.tolist()),
-            Series("torque M(t)/M_max", load_t, load, "dotted"),
-            Series(f"peak {factor:.5g} at t = {when:.4g} s (report)", [when], [peak], "points"),
+            Series("torque M(t)/M_max", load_t, load, "load"),
+            Series(f"peak {factor:.5g} at t = {when:.4g} s (report)", [when], [peak], "this-case"),
         ],
-        [Mark("y", 1.0, "static, φ/φ_st = 1")],
+        [Mark("y", 1.0, "static, φ/φ_st = 1", "static")],
     )
 
 

@@ -85,12 +85,14 @@ def _rope_chart(r: RopeScene, table: MethodsTable, hanging: bool) -> Chart:
     events = [(t, what) for t, what in history.events if t <= shown]
     if r.slack > 0.0 and not hanging and events and events[0][1] == "taut":
         t_taut = events.pop(0)[0]
-        series.append(Series(f"slack taken up, t = {t_taut:.4g} s", [t_taut], [0.0], "points"))
+        series.append(
+            Series(f"slack taken up, t = {t_taut:.4g} s", [t_taut], [0.0], "event", "taut")
+        )
     lifts_shown = [t for t, what in events if what == "lift-off"]
     if not hanging and lifts_shown:
         many = f" ({len(lifts_shown)}×)" if len(lifts_shown) > 1 else ""
         label = f"load lifts off, t = {lifts_shown[0]:.4g} s{many}"
-        series.append(Series(label, lifts_shown, [1.0] * len(lifts_shown), "points"))
+        series.append(Series(label, lifts_shown, [1.0] * len(lifts_shown), "event", "lift-off"))
     slack = [t for t, what in events if what in ("slack", "taut")]
     if slack:
         episodes = sum(1 for _, what in events if what == "slack")
@@ -98,17 +100,25 @@ def _rope_chart(r: RopeScene, table: MethodsTable, hanging: bool) -> Chart:
             label = f"rope slack from {slack[0]:.4g} to {slack[1]:.4g} s"
         else:
             label = f"rope goes slack {episodes}× (first at {slack[0]:.4g} s)"
-        series.append(Series(label, slack, [0.0] * len(slack), "points"))
+        series.append(Series(label, slack, [0.0] * len(slack), "event", "slack"))
     downs = [t for t, what in events if what == "touch-down"]
     if downs:
         label = f"load touches down, t = {downs[0]:.4g} s" + (
             f" ({len(downs)}×)" if len(downs) > 1 else ""
         )
-        series.append(Series(label, downs, [_psi_at(r, history, t) for t in downs], "points"))
+        series.append(
+            Series(label, downs, [_psi_at(r, history, t) for t in downs], "event", "down")
+        )
     if r.start_time <= shown:
         t_p = r.start_time
         series.append(
-            Series(f"start ends, t_p = {t_p:.4g} s", [t_p], [_psi_at(r, history, t_p)], "points")
+            Series(
+                f"start ends, t_p = {t_p:.4g} s",
+                [t_p],
+                [_psi_at(r, history, t_p)],
+                "event",
+                "start",
+            )
         )
     scene = "load hanging" if hanging else "load lifting off the ground"
     if r.slack > 0.0 and not hanging:
@@ -129,9 +139,19 @@ def _rope_chart(r: RopeScene, table: MethodsTable, hanging: bool) -> Chart:
         "ψ = F/G [-]",
         series,
         [
-            Mark("y", reported, f"reported ψ = {_psi_text(reported)} ({reference.method})"),
-            Mark("y", 1.0, "static, ψ = 1"),
-            Mark("x", t_peak, f"peak of the curve ψ = {_psi_text(peak)} at t = {t_peak:.4g} s"),
+            Mark(
+                "y",
+                reported,
+                f"reported ψ = {_psi_text(reported)} ({reference.method})",
+                "reported",
+            ),
+            Mark("y", 1.0, "static, ψ = 1", "static"),
+            Mark(
+                "x",
+                t_peak,
+                f"peak of the curve ψ = {_psi_text(peak)} at t = {t_peak:.4g} s",
+                "event",
+            ),
         ],
     )
 

@@ -67,16 +67,16 @@ def _speed_chart(result: Result, angles: list[float], speeds: list[float]) -> Ch
     marks: list[Mark] = []
     if fl is not None:
         marks += [
-            Mark("y", fl.maximum, f"ω_max = {fl.maximum:.5g} rad/s"),
-            Mark("y", fl.mean, f"ω_mean = {fl.mean:.5g} rad/s (last revolution)"),
-            Mark("y", fl.minimum, f"ω_min = {fl.minimum:.5g} rad/s"),
+            Mark("y", fl.maximum, f"ω_max = {fl.maximum:.5g} rad/s", "reported"),
+            Mark("y", fl.mean, f"ω_mean = {fl.mean:.5g} rad/s (last revolution)", "mean"),
+            Mark("y", fl.minimum, f"ω_min = {fl.minimum:.5g} rad/s", "reported"),
         ]
         first = scene.end_angle - TWO_PI
         if first > scene.start_angle + 1e-9 * TWO_PI:
             marks.append(Mark("x", math.degrees(first), "last revolution"))
     else:
         mean = scene.span / ref.final_time
-        marks.append(Mark("y", mean, f"mean over the run {mean:.5g} rad/s"))
+        marks.append(Mark("y", mean, f"mean over the run {mean:.5g} rad/s", "mean"))
     path = result.path
     if path is not None:
         # Nodes far off the reference's range would squash its curve: left out, and said
@@ -91,7 +91,7 @@ def _speed_chart(result: Result, angles: list[float], speeds: list[float]) -> Ch
         if len(kept) < len(path.angles):
             label += f" ({len(path.angles) - len(kept)} of {len(path.angles)} nodes off the scale)"
         if kept:
-            series.append(Series(label, [a for a, _ in kept], [w for _, w in kept], "points"))
+            series.append(Series(label, [a for a, _ in kept], [w for _, w in kept], "nodes"))
     return Chart(
         "Angular speed ω(φ) over the run",
         "φ [deg]",
@@ -109,5 +109,5 @@ def _torque_chart(angles: list[float], torques: list[float]) -> Chart:
         "φ [deg]",
         "M [N·m]",
         [Series("M(φ, ω(φ))", [math.degrees(a) for a in angles], torques)],
-        [Mark("y", 0.0)],
+        [Mark("y", 0.0, role="static")],
     )

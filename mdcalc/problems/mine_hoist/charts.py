@@ -4,7 +4,7 @@ height sweep (data only)."""
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -70,17 +70,11 @@ def _factor_chart(dyn: Dynamics, spring: int) -> Chart:
         modes = "mode" if len(left_out) == 1 else "modes"
         without = f" without the {modes} from {cut:.4g} rad/s"
         if fast > CHART_ENVELOPE:
-            # one closed outline, upper edge out and lower edge back: one colour, one entry
-            outline = [*(mu + fast).tolist(), *(mu - fast)[::-1].tolist()]
+            # the upper and the lower edge, two curves with one legend entry
             series.append(Series(label + without, x, mu.tolist()))
-            series.append(
-                Series(
-                    f"envelope ± {fast:.3g} of the {modes} too fast to draw",
-                    [*x, *x[::-1]],
-                    outline,
-                    "dashed",
-                )
-            )
+            envelope = f"envelope ± {fast:.3g} of the {modes} too fast to draw"
+            series.append(Series(envelope, x, (mu + fast).tolist(), "envelope"))
+            series.append(Series("", x, (mu - fast).tolist(), "envelope"))
         else:
             series.append(Series(f"{label}{without} (Σ|b| = {fast:.1e})", x, mu.tolist()))
     else:
@@ -92,7 +86,7 @@ def _factor_chart(dyn: Dynamics, spring: int) -> Chart:
             f"first-swing maximum {peak:.5g} at t = {first.time:.4g} s",
             [first.time],
             [peak],
-            "points",
+            "this-case",
         )
     )
     supremum = dyn.supremum(spring)
@@ -103,9 +97,9 @@ def _factor_chart(dyn: Dynamics, spring: int) -> Chart:
         f"{name} [-]",
         series,
         [
-            Mark("y", supremum, f"supremum 1 + Σ|b| = {supremum:.5g}"),
-            Mark("y", 1.0, "static, μ = 1"),
-            Mark("x", dyn.period, f"first swing ends, 2π/β₁ = {dyn.period:.4g} s"),
+            Mark("y", supremum, f"supremum 1 + Σ|b| = {supremum:.5g}", "reported"),
+            Mark("y", 1.0, "static, μ = 1", "static"),
+            Mark("x", dyn.period, f"first swing ends, 2π/β₁ = {dyn.period:.4g} s", "event"),
         ],
     )
 
@@ -115,16 +109,15 @@ def _sweep_chart(rows: list[SweepRow]) -> Chart:
     from mdcalc.output.plot import Chart, Series
 
     heights = [row.height for row in rows]
-    style: Any = "points" if len(rows) < 2 else "line"
-    dashed: Any = "points" if len(rows) < 2 else "dashed"
+    series = []
+    for spring, (name, formula) in enumerate((("μ₁₂", "(19)"), ("μ₂₃", "(20)"))):
+        suprema = [r.dynamics.supremum(spring) for r in rows]
+        simplified = [r.dynamics.simplified[spring] for r in rows]
+        series.append(Series(f"{name} supremum", heights, suprema, group=name))
+        series.append(Series(f"{name} by {formula}", heights, simplified, "comparison", name))
     return Chart(
         "Height sweep: the undamped suprema and the simplified formulas (19)-(20)",
         "H [m]",
         "μ [-]",
-        [
-            Series("μ₁₂ supremum", heights, [r.dynamics.supremum(0) for r in rows], style),
-            Series("μ₁₂ by (19)", heights, [r.dynamics.simplified[0] for r in rows], dashed),
-            Series("μ₂₃ supremum", heights, [r.dynamics.supremum(1) for r in rows], style),
-            Series("μ₂₃ by (20)", heights, [r.dynamics.simplified[1] for r in rows], dashed),
-        ],
+        series,
     )

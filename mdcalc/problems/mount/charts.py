@@ -12,7 +12,7 @@ from mdcalc.problems.mount.scene import RAD_S_TO_RPM, peak_of_two_harmonics_arra
 from mdcalc.problems.mount.solve import Result
 
 if TYPE_CHECKING:
-    from mdcalc.output.plot import Chart, Series, Style
+    from mdcalc.output.plot import Chart, Role, Series
 
 
 #: Points of each curve of ``--plot`` (and the case's ratio, 1/2 and 1 added).
@@ -58,26 +58,26 @@ def charts(result: Result) -> list[Chart]:
     ceiling = max([clip * level, *own])
     with np.errstate(all="ignore"):
         first, second = swept.response(1), swept.response(2)
-        curves: list[tuple[str, Any, Style]] = [
-            ("peak |x|", peak_of_two_harmonics_array(first, second), "line"),
-            ("|A₁| (ω)", np.abs(first), "dashed"),
-            ("|A₂| (2ω)", np.abs(second), "dotted"),
+        curves: list[tuple[str, Any, Role]] = [
+            ("peak |x|", peak_of_two_harmonics_array(first, second), "result"),
+            ("|A₁| (ω)", np.abs(first), "secondary"),
+            ("|A₂| (2ω)", np.abs(second), "secondary"),
         ]
     x = ratios.tolist()
     series = [
-        Series(label, x, (1e3 * _clipped(values, ceiling)).tolist(), style)
-        for label, values, style in curves
+        Series(label, x, (1e3 * _clipped(values, ceiling)).tolist(), role)
+        for label, values, role in curves
     ]
     speed = f"this case: ω = {s.omega:.4g} rad/s = {s.omega * RAD_S_TO_RPM:.4g} rpm"
     marks = [
-        Mark("x", 1.0, "resonances ω = β, β/2"),
-        Mark("x", 0.5),
-        Mark("y", 1e3 * level, "m·r/M (lecture, high speed)"),
+        Mark("x", 1.0, "resonances ω = β, β/2", "resonance"),
+        Mark("x", 0.5, role="resonance"),
+        Mark("y", 1e3 * level, "m·r/M (lecture, high speed)", "reported"),
     ]
     if ok:
-        series.append(Series(speed, [ratio] * 3, [1e3 * a for a in own], "points"))
+        series.append(Series(speed, [ratio] * 3, [1e3 * a for a in own], "this-case"))
     else:
-        marks.append(Mark("x", ratio, f"{speed}: unbounded"))
+        marks.append(Mark("x", ratio, f"{speed}: unbounded", "this-case"))
     damping = "undamped, clipped at resonance" if s.zeta == 0.0 else f"ζ = {s.zeta:g}"
     out = [
         Chart(
@@ -98,14 +98,14 @@ def charts(result: Result) -> list[Chart]:
         passed = [np.abs(swept.transmitted(k)) / swept.force(k) for k in (1, 2)]
     series = [
         Series("1st harmonic, T(ω/β)", x, _clipped(passed[0], clip_t).tolist()),
-        Series("2nd harmonic, T(2ω/β)", x, _clipped(passed[1], clip_t).tolist(), "dashed"),
+        Series("2nd harmonic, T(2ω/β)", x, _clipped(passed[1], clip_t).tolist(), "secondary"),
     ]
     if ok:
         own_t = [sdof.transmissibility(k * ratio, s.zeta) for k in (1, 2)]
-        series.append(Series(f"this case: ω/β = {ratio:.4g}", [ratio] * 2, own_t, "points"))
+        series.append(Series(f"this case: ω/β = {ratio:.4g}", [ratio] * 2, own_t, "this-case"))
     marks = [
-        Mark("x", math.sqrt(2.0), "T = 1 at any ζ: ω/β = √2, √2/2"),
-        Mark("x", math.sqrt(0.5)),
+        Mark("x", math.sqrt(2.0), "T = 1 at any ζ: ω/β = √2, √2/2", "advice"),
+        Mark("x", math.sqrt(0.5), role="advice"),
     ]
     if target is not None and needed is not None:
         stiffness = stiffness_for(s, target)
@@ -114,10 +114,10 @@ def charts(result: Result) -> list[Chart]:
                 f"target met with c = {stiffness:.4g} N/m (ω/β = {needed:.4g})",
                 [needed],
                 [target],
-                "points",
+                "event",
             )
         )
-        marks.append(Mark("y", target, f"target T = {target:g} (1st harmonic)"))
+        marks.append(Mark("y", target, f"target T = {target:g} (1st harmonic)", "limit"))
     out.append(
         Chart(
             f"Force transmissibility of the mounts against ω/β "

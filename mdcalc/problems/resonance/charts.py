@@ -53,7 +53,7 @@ def _campbell_chart(case: Case, md: Modal | None) -> Chart | None:
     if md is not None and c is not None and cb is not None:
         orders |= set(cb.orders or default_orders(c.strokes))
         low, high = cb.from_rpm, cb.to_rpm
-        marks = [Mark("x", low, "speed range of the Campbell table"), Mark("x", high)]
+        marks = [Mark("x", low, "speed range of the Campbell table", "range"), Mark("x", high)]
     else:
         if md is not None and r is not None:
             orders.add(r.order)
@@ -72,14 +72,13 @@ def _campbell_chart(case: Case, md: Modal | None) -> Chart | None:
     if len(ks) <= LABELLED_ORDERS:
         for k in ks:
             series.append(
-                Series(f"order k = {k:g}", [0.0, high], [0.0, k * high / HZ_TO_RPM], "dashed")
+                Series(f"order k = {k:g}", [0.0, high], [0.0, k * high / HZ_TO_RPM], "excitation")
             )
-    else:  # one polyline out and back along each ray: one legend entry for the fan
-        x, y = [0.0], [0.0]
+    else:  # a ray per order in one colour, one legend entry for the fan
         for k in ks:
-            x += [high, 0.0]
-            y += [k * high / HZ_TO_RPM, 0.0]
-        series.append(Series(f"orders k·n/60, k = {ks[0]:g} … {ks[-1]:g}", x, y, "dashed"))
+            label = f"orders k·n/60, k = {ks[0]:g} … {ks[-1]:g}" if k == ks[0] else ""
+            y = [0.0, k * high / HZ_TO_RPM]
+            series.append(Series(label, [0.0, high], y, "excitation", group="orders"))
     if md is not None:
         critical = [
             (HZ_TO_RPM * fs[j] / k, fs[j])
@@ -93,7 +92,7 @@ def _campbell_chart(case: Case, md: Modal | None) -> Chart | None:
                     "critical speeds n = 60·f/k",
                     [n for n, _ in critical],
                     [f for _, f in critical],
-                    "points",
+                    "event",
                 )
             )
     if measured:
@@ -102,7 +101,7 @@ def _campbell_chart(case: Case, md: Modal | None) -> Chart | None:
                 "measured: f = n·k/60",
                 [m.speed_rpm for m in measured],
                 [m.speed_rpm * m.order / HZ_TO_RPM for m in measured],
-                "points",
+                "event",
             )
         )
         stated = [m for m in measured if m.frequency_hz is not None]
@@ -112,7 +111,7 @@ def _campbell_chart(case: Case, md: Modal | None) -> Chart | None:
                     "measured: the f stated",
                     [m.speed_rpm for m in stated],
                     [m.frequency_hz or 0.0 for m in stated],
-                    "points",
+                    "measured",
                 )
             )
     return Chart(
@@ -164,7 +163,7 @@ def _ince_strutt_chart(m: Mathieu) -> Chart:
                 "first approximation, a = 1 ± √(q² - c²)",
                 [q for q, _ in tongue],
                 [a for _, a in tongue],
-                "dashed",
+                "comparison",
             )
         )
     if m.points:
@@ -173,7 +172,7 @@ def _ince_strutt_chart(m: Mathieu) -> Chart:
                 "the case's (q, a)",
                 [p[1] for p in m.points],
                 [p[0] for p in m.points],
-                "points",
+                "this-case",
             )
         )
     return Chart(

@@ -19,7 +19,7 @@ from mdcalc.problems.variator.solve import Result
 from mdcalc.problems.variator.transfer import transfer_of
 
 if TYPE_CHECKING:
-    from mdcalc.output.plot import Chart, Style
+    from mdcalc.output.plot import Chart, Role
 
 
 #: Points of a curve over its whole range, before refinement at a notch.
@@ -105,17 +105,19 @@ def _absorber_chart(s: AbsorberScene) -> Chart:
             if math.isfinite(value) and not (notch and x is first[0]):
                 x.append(ratio)
                 y.append(value)
-    styles: tuple[Style, ...] = ("dotted", "line", "dashed")
+    roles: tuple[Role, ...] = ("comparison", "result", "secondary")
     series = [
-        Series(label, x, y, style)
-        for (label, (x, y)), style in zip(curves.items(), styles, strict=True)
+        Series(label, x, y, role)
+        for (label, (x, y)), role in zip(curves.items(), roles, strict=True)
     ]
     if s.bg > 0.0 and (minimum := absorber_minimum(s)) is not None:
         depth, where = minimum
-        series.append(Series("damped minimum of |A₁|", [where / s.omega], [depth], "points"))
-    marks = [Mark("x", 1.0, f"ω of the torque, {s.omega:.4g} rad/s")]
+        series.append(Series("damped minimum of |A₁|", [where / s.omega], [depth], "event"))
+    marks = [Mark("x", 1.0, f"ω of the torque, {s.omega:.4g} rad/s", "this-case")]
     if abs(tuning - 1.0) > 1e-9:
-        marks.append(Mark("x", tuning, f"absorber tuned to √(c_g/J₂) = {tuning * s.omega:.4g}"))
+        marks.append(
+            Mark("x", tuning, f"absorber tuned to √(c_g/J₂) = {tuning * s.omega:.4g}", "design")
+        )
     return Chart(
         "Anti-resonance absorber (8.38): |A| against ω"
         + (f", b_g = {s.bg:g} N·m·s/rad" if s.bg > 0.0 else ", undamped (peaks cut by the grid)"),
@@ -137,8 +139,8 @@ def _clutch_chart(c: Clutch) -> Chart:
     series = [
         Series("loading curve M = c₀·ξⁿ", twist.tolist(), (c.load_max * (twist / x2) ** n).tolist())
     ]
-    styles: tuple[Style, ...] = ("dashed", "dotted", "dashed")
-    for line, style in zip(lines, styles, strict=True):
+    roles: tuple[Role, ...] = ("comparison", "secondary", "comparison")
+    for line, role in zip(lines, roles, strict=True):
         # the chord is a line over the working range only (it misses the origin)
         x = twist if line.offset == 0.0 else np.linspace(x1, 1.1 * x2, 101)
         series.append(
@@ -146,7 +148,7 @@ def _clutch_chart(c: Clutch) -> Chart:
                 f"{line.key.replace('_', ' ')}: {line.stiffness:.4g} N·m/rad",
                 x.tolist(),
                 (line.offset + line.stiffness * x).tolist(),
-                style,
+                role,
             )
         )
     marks = [Mark("x", x2, "working range")]
@@ -175,10 +177,10 @@ def _mechanism_chart(m: Mechanism) -> Chart:
         "Π - φ_c [rad], Π′ [-], Π″ [1/rad]",
         [
             Series("Π′", degrees, [t.first(v) for v in x]),
-            Series("Π″", degrees, [t.second(v) for v in x], "dashed"),
-            Series("Π - φ_c", degrees, [t.position(v) for v in x], "dotted"),
+            Series("Π″", degrees, [t.second(v) for v in x], "secondary"),
+            Series("Π - φ_c", degrees, [t.position(v) for v in x], "secondary"),
         ],
-        [Mark("y", 1.0 / t.ratio, "mean of Π′ = 1/i_c")],
+        [Mark("y", 1.0 / t.ratio, "mean of Π′ = 1/i_c", "static")],
     )
 
 
@@ -225,6 +227,7 @@ def _stroke_chart(result: Result) -> Chart:
                 label,
                 (tau / d.period * stroke).tolist(),
                 (state.observe(w, tau) / d.static).tolist(),
+                "comparison" if label.startswith("before") else "result",
             )
         )
     return Chart(
@@ -233,7 +236,7 @@ def _stroke_chart(result: Result) -> Chart:
         "α - α₁, into the stroke [deg]",
         "q/q_c [-]",
         series,
-        [Mark("y", 1.0, "static q_c = M_c/c")],
+        [Mark("y", 1.0, "static q_c = M_c/c", "static")],
     )
 
 
@@ -264,16 +267,18 @@ def _antiresonance_chart(before: DriveScene, three: ThreeMass) -> Chart:
     # q₁ = 0 to round-off (the anti-resonance itself), which no log axis shows
     new[np.abs(one - two) <= 1e-9 * (np.abs(one) + np.abs(two))] = np.nan
     series = []
-    pairs: tuple[tuple[str, np.ndarray, Style], ...] = (
-        ("before: J₃ rigid on J₂", old, "dashed"),
-        ("after: coupling c₂ and J₃", new, "line"),
+    pairs: tuple[tuple[str, np.ndarray, Role], ...] = (
+        ("before: J₃ rigid on J₂", old, "comparison"),
+        ("after: coupling c₂ and J₃", new, "result"),
     )
-    for label, values, style in pairs:
+    for label, values, role in pairs:
         keep = np.isfinite(values)
-        series.append(Series(label, ratios[keep].tolist(), values[keep].tolist(), style))
-    marks = [Mark("x", 1.0, f"Ω = zω = {fundamental:.4g} rad/s, the design")]
+        series.append(Series(label, ratios[keep].tolist(), values[keep].tolist(), role))
+    marks = [Mark("x", 1.0, f"Ω = zω = {fundamental:.4g} rad/s, the design", "design")]
     if abs(zero - 1.0) > 1e-9:
-        marks.append(Mark("x", zero, f"clutch anti-resonance {three.antiresonance:.4g} rad/s"))
+        marks.append(
+            Mark("x", zero, f"clutch anti-resonance {three.antiresonance:.4g} rad/s", "resonance")
+        )
     return Chart(
         "Anti-resonance (7f): the clutch under one harmonic ν of u = ω²Π″, before and after",
         "ν/Ω [-]",
@@ -302,7 +307,7 @@ def _pendulum_chart(p: Pendulum) -> Chart:
             [math.degrees(t) for t in swings],
         )
     ]
-    marks = [Mark("x", 1.0, f"tuned: L = R/n² = {p.pivot_radius / n**2 * 1e3:.4g} mm")]
+    marks = [Mark("x", 1.0, f"tuned: L = R/n² = {p.pivot_radius / n**2 * 1e3:.4g} mm", "design")]
     if p.max_swing is not None:
         factor = agm(1.0, math.cos(0.5 * p.max_swing))
         series.append(
@@ -310,10 +315,10 @@ def _pendulum_chart(p: Pendulum) -> Chart:
                 f"at θ_max: order {n * factor:.4g}",
                 [factor],
                 [math.degrees(p.max_swing)],
-                "points",
+                "this-case",
             )
         )
-        marks.append(Mark("y", math.degrees(p.max_swing), "θ_max"))
+        marks.append(Mark("y", math.degrees(p.max_swing), "θ_max", "this-case"))
     return Chart(
         f"Centrifugal pendulum, order n = {n:g}: swing against its frequency ratio (backbone)",
         "n(θ)/n, the pendulum's order over its design order [-]",

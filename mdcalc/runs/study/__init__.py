@@ -45,6 +45,8 @@ class StudyResult:
     sampling_seconds: float = 0.0
     #: The Sobol design's evaluation and the indices [s].
     sensitivity_seconds: float = 0.0
+    #: The nominal scene solved: (the solver's result or None, its report).
+    scene: tuple[Any, Any] | None = None
 
     @property
     def samples_per_second(self) -> float:
@@ -83,6 +85,7 @@ def run(
     applies to each sample; ``on_done(n)`` is told of samples finished and
     ``on_total(n)`` of the samples to come (for a progress bar)."""
     from mdcalc.problems import PROBLEMS
+    from mdcalc.runs.runner import solve_model
     from mdcalc.runs.study.sample import draws, salib_problem, saltelli
     from mdcalc.runs.sweep import key_results
 
@@ -91,14 +94,18 @@ def run(
     spec = study.spec
     module = PROBLEMS[study.problem].load()
     nominal = study.nominal
+    scene = solve_model(study.problem, module, nominal, time_limit)
     asked = list(spec.results or [])
     if asked:
         asked += [k for k in spec.limits if k not in asked]
-    keys, units = key_results(study.problem, module, nominal, asked, str(case.path), time_limit)
+    where = str(case.path)
+    keys, units = key_results(
+        study.problem, module, nominal, asked, where, time_limit, report=scene[1]
+    )
     if spec.results is None:  # the key results, and each limit's result
         unknown = [k for k in spec.limits if k not in units]
         if unknown:
-            key_results(study.problem, module, nominal, unknown, str(case.path), time_limit)
+            key_results(study.problem, module, nominal, unknown, where, report=scene[1])
         keys += [k for k in spec.limits if k not in keys]
     if not keys:
         raise InputError(
@@ -113,6 +120,7 @@ def run(
     done = time.perf_counter()
     how = _how(evaluated, mapper)
     result = StudyResult(study, keys, units, samples, evaluated, how, 0.0, time_limit=time_limit)
+    result.scene = scene
     result.setup_seconds, result.sampling_seconds = sampling - start, done - sampling
     for key in keys:
         result.stats[key] = stats(key, units.get(key, ""), evaluated.values[key])

@@ -6,16 +6,33 @@ from __future__ import annotations
 
 import json
 import math
+from datetime import datetime
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from mdcalc.errors import InputError, Problem
-from mdcalc.output.report import format_seconds, format_value
+from mdcalc.output.report import (
+    JSON_FORMAT,
+    Column,
+    Note,
+    Quantities,
+    Quantity,
+    Report,
+    Table,
+    Value,
+    ascii_unit,
+    format_seconds,
+    format_value,
+)
 from mdcalc.runs.study import StudyResult
 from mdcalc.runs.study.summary import PERCENTILES, Sobol
 
-#: Version of the study JSON document (``"kind": "study"``).
-FORMAT = 1
+if TYPE_CHECKING:
+    from mdcalc.output.document import Document
+
+#: Version of the study JSON document (``"kind": "study"``): a report's
+#: (2: units in ASCII, :func:`mdcalc.output.report.ascii_unit`).
+FORMAT = JSON_FORMAT
 
 
 def _finite(value: float) -> float | None:
@@ -48,7 +65,7 @@ def to_dict(result: StudyResult) -> dict[str, Any]:
         "inputs": [
             {
                 "key": item.key,
-                "unit": item.unit,
+                "unit": ascii_unit(item.unit),
                 "distribution": item.dist.describe(item.unit),
                 "kind": item.dist.kind,
                 "drawn_min": float(result.samples[:, j].min()),
@@ -60,7 +77,7 @@ def to_dict(result: StudyResult) -> dict[str, Any]:
             key: None
             if s is None
             else {
-                "unit": s.unit,
+                "unit": ascii_unit(s.unit),
                 "count": s.count,
                 "mean": s.mean,
                 "sd": s.sd,
@@ -73,7 +90,7 @@ def to_dict(result: StudyResult) -> dict[str, Any]:
         "limits": [
             {
                 "result": e.key,
-                "unit": e.unit,
+                "unit": ascii_unit(e.unit),
                 "above": e.above,
                 "below": e.below,
                 "exceeded": e.exceeded,
@@ -125,97 +142,185 @@ def to_json(result: StudyResult, indent: int | None = 2) -> str:
     return json.dumps(to_dict(result), indent=indent, ensure_ascii=False, allow_nan=False)
 
 
-def render_rich(result: StudyResult, console: Any) -> None:
-    from rich.table import Table
-
-    from mdcalc.output.text import print_titled
-
+def study_report(result: StudyResult) -> Report:
+    """The study as a :class:`~mdcalc.output.report.Report`: the one value the
+    terminal, HTML and Markdown renderers draw (``to_dict`` is its JSON)."""
     plan, spec, ev = result.plan, result.plan.spec, result.evaluated
-    title = plan.case.data.get("title") or plan.problem
+    title = plan.case.data.get("title")
     n = len(result.samples)
-    console.print(f"[bold]Study: {title}[/bold]")
-    console.print(
-        f"{plan.problem}, {n:,} samples ({spec.sampler}, seed {spec.seed}), {result.how}\n"
-        f"{format_seconds(result.seconds)} in all: set-up {format_seconds(result.setup_seconds)}, "
-        f"samples {format_seconds(result.sampling_seconds)} "
-        f"({result.samples_per_second:,.0f} samples/s)"
-        + (
-            f", Sobol {format_seconds(result.sensitivity_seconds)}"
-            if result.sensitivity_runs
-            else ""
-        ),
-        highlight=False,
+    answered = any(s is not None for s in result.stats.values())
+    report = Report(
+        plan.problem,
+        f"Study: {title if isinstance(title, str) else plan.problem}",
+        status="ok" if answered else "no-answer",
+        message=None if answered else "no sample gave a value",
+        case=str(plan.case.path),
+        time_limit=result.time_limit,
     )
-    inputs = Table(title="Inputs", title_justify="left")
-    for label in ("key", "distribution", "drawn min", "drawn max"):
-        inputs.add_column(label, justify="left" if label in ("key", "distribution") else "right")
-    for j, item in enumerate(plan.inputs):
-        column = result.samples[:, j]
-        inputs.add_row(
-            item.key,
-            item.dist.describe(item.unit),
-            format_value(float(column.min())),
-            format_value(float(column.max())),
+    failed = sum(ev.counts.values())
+    how = [
+        Quantity("samples", "Samples", n),
+        Quantity("sampler", "Sampler", spec.sampler),
+        Quantity("seed", "Seed", spec.seed),
+        Quantity("how", "Run by", result.how),
+        Quantity("failed", "Samples without a value", failed),
+        Quantity("seconds", "Run time, in all", format_seconds(result.seconds)),
+        Quantity("setup_seconds", "Run time, set-up", format_seconds(result.setup_seconds),
+                 note="imports, the plan, the nominal scene, the draws"),
+        Quantity("sampling_seconds", "Run time, samples", format_seconds(result.sampling_seconds)),
+        Quantity("rate", "Samples per second", f"{result.samples_per_second:,.0f}"),
+    ]  # fmt: skip
+    if result.sensitivity_runs:
+        seconds = format_seconds(result.sensitivity_seconds)
+        how.append(Quantity("sensitivity_seconds", "Run time, Sobol design", seconds))
+    report.sections.append(Quantities("Study", how))
+    report.sections.append(
+        Table(
+            "Inputs drawn",
+            "inputs",
+            [
+                Column("key"),
+                Column("as written", kind="quantity"),
+                Column("distribution"),
+                Column("drawn min"),
+                Column("drawn max"),
+            ],
+            [
+                [
+                    item.key,
+                    _written(plan.case, item.key),
+                    item.dist.describe(item.unit),
+                    float(result.samples[:, j].min()),
+                    float(result.samples[:, j].max()),
+                ]
+                for j, item in enumerate(plan.inputs)
+            ],
+            rows_differ=True,
         )
-    print_titled(console, inputs)
-    table = Table(title="Results", title_justify="left")
-    labels = ["result", "unit", "mean", "sd", *(f"P{p}" for p in PERCENTILES), "min", "max"]
-    for label in labels:
-        table.add_column(label, justify="left" if label in ("result", "unit") else "right")
+    )
+    labels = ["mean", "sd", *(f"P{p}" for p in PERCENTILES), "min", "max"]
+    rows: list[list[Value]] = []
     for key, s in result.stats.items():
         if s is None:
-            table.add_row(key, result.units.get(key, ""), *["—"] * (len(labels) - 2))
-            continue
-        numbers = [s.mean, s.sd, *s.percentiles.values(), s.low, s.high]
-        table.add_row(key, s.unit, *(format_value(v) for v in numbers))
-    print_titled(console, table)
+            rows.append([key, result.units.get(key, ""), *["—"] * len(labels)])
+        else:
+            rows.append([key, s.unit, s.mean, s.sd, *s.percentiles.values(), s.low, s.high])
+    columns = [Column("result"), Column("unit"), *map(Column, labels)]
+    report.sections.append(Table("Results", "results", columns, rows, rows_differ=True))
     if result.limits:
-        limits = Table(title="Limits", title_justify="left")
-        for label in ("result", "exceeded when", "samples", "probability", "95 % interval", ""):
-            limits.add_column(label, justify="right" if label in ("samples",) else "left")
-        for e in result.limits:
-            limits.add_row(
-                e.key,
-                f"{e.text} {e.unit}".strip(),
-                f"{e.exceeded:,} of {e.of:,}",
-                format_value(e.probability, 4) if math.isfinite(e.probability) else "—",
-                f"{format_value(e.low, 3)} … {format_value(e.high, 3)}",
-                e.note,
+        report.sections.append(
+            Table(
+                "Limits",
+                "limits",
+                [
+                    Column("result"),
+                    Column("exceeded when"),
+                    Column("samples exceeding"),
+                    Column("of"),
+                    Column("probability"),
+                    Column("95 % interval, low"),
+                    Column("high"),
+                    Column("note"),
+                ],
+                [
+                    [
+                        e.key,
+                        f"{e.text} {e.unit}".strip(),
+                        e.exceeded,
+                        e.of,
+                        e.probability if math.isfinite(e.probability) else "—",
+                        e.low,
+                        e.high,
+                        e.note,
+                    ]
+                    for e in result.limits
+                ],
+                rows_differ=True,
             )
-        print_titled(console, limits)
+        )
     if result.sensitivity:
         per_design = spec.sensitivity_samples // max(result.sensitivity_replicates, 1)
-        sens = Table(
-            title=(
-                f"Sobol indices ({result.sensitivity_runs:,} runs, SALib: "
-                f"{result.sensitivity_replicates} designs × {per_design:,} base samples; ± 95 %)"
-            ),
-            title_justify="left",
-        )
-        for label in ("result", "input", "first order S1", "total ST"):
-            sens.add_column(label, justify="left" if label in ("result", "input") else "right")
+        sobol_rows: list[list[Value]] = []
         for sob in result.sensitivity:
             for name in sob.first:
-                sens.add_row(
-                    sob.key,
-                    name,
-                    f"{sob.first[name]:.3f} ± {sob.first_conf[name]:.3f}",
-                    f"{sob.total[name]:.3f} ± {sob.total_conf[name]:.3f}",
-                )
-            if sob.note:  # no indices, or indices from fewer designs
-                sens.add_row(sob.key, "—", sob.note, "")
-        print_titled(console, sens)
-    failed = sum(ev.counts.values())
-    if failed:
-        console.print(f"[yellow]{failed:,} of {n:,} samples gave no values:[/yellow]")
-        for kind, count in ev.counts.items():
-            console.print(f"  {kind}: {count:,}", highlight=False, markup=False)
-            for reason in ev.reasons.get(kind, []):
-                console.print(f"    {reason}", highlight=False, markup=False)
-    else:
-        console.print(f"every sample answered ({n:,})", style="dim")
+                sobol_rows.append(
+                    [sob.key, name, *(round(v, 3) for v in (sob.first[name],
+                     sob.first_conf[name], sob.total[name], sob.total_conf[name]))]
+                )  # fmt: skip
+        notes = [f"{sob.key}: {sob.note}" for sob in result.sensitivity if sob.note]
+        report.sections.append(
+            Table(
+                f"Sobol indices ({result.sensitivity_runs:,} runs, SALib: "
+                f"{result.sensitivity_replicates} designs × {per_design:,} base samples)",
+                "sobol",
+                [
+                    Column("result"),
+                    Column("input"),
+                    Column("first order S1"),
+                    Column("± 95 %"),
+                    Column("total ST"),
+                    Column("± 95 %"),
+                ],
+                sobol_rows,
+                rows_differ=True,
+            )  # fmt: skip
+        )
+        report.notes += [Note("info", f"Sobol indices of {note}") for note in notes]
+    for kind, count in ev.counts.items():
+        reasons = "; ".join(ev.reasons.get(kind, []))
+        text = f"{count:,} of {n:,} samples gave no value: {kind}"
+        report.notes.append(Note("warning", f"{text} ({reasons})" if reasons else text))
     if ev.note:
-        console.print(ev.note, style="dim")
+        report.notes.append(Note("info", ev.note))
+    return report
+
+
+def _written(case: Any, key: str) -> str:
+    """The ``[study.inputs]`` entry of ``key`` as the file writes it, where it stands on
+    its own line (``{ nominal = "893.45 kN*m/rad", tol = "±15 %" }``); else ""."""
+    line = case.line_of(("study", "inputs", key))
+    lines = case.text.splitlines()
+    if line is None or not 0 < line <= len(lines):
+        return ""
+    _, equals, rest = lines[line - 1].partition("=")
+    text = rest.strip()
+    return text if equals and text.startswith("{") and text.endswith("}") else ""
+
+
+def render_rich(result: StudyResult, console: Any) -> None:
+    """The study's report on a rich Console (colour only on a terminal)."""
+    from mdcalc.output.text import render_rich as render
+
+    render(study_report(result), console)
+
+
+def study_document(result: StudyResult, when: datetime | None = None) -> Document:
+    """The filed report of a study (``study --report``, ``run --report-dir``): the
+    study's report, then the nominal scene's report, with the charts of both and the
+    scene's inputs as written and as computed with."""
+    from dataclasses import replace
+
+    from mdcalc.output.document import document_of
+    from mdcalc.problems import PROBLEMS
+    from mdcalc.runs.runner import Run
+
+    plan = result.plan
+    report = study_report(result)
+    assert result.scene is not None and plan.scene_case is not None  # run() keeps them
+    scene_result, scene = result.scene
+    module = PROBLEMS[plan.problem].load()
+    nominal = document_of(Run(scene, scene_result, module, plan.scene_case, plan.nominal), when)
+    report.sections += [
+        replace(section, title=f"Nominal scene: {section.title}") for section in scene.sections
+    ]
+    report.notes += [replace(note, text=f"nominal scene: {note.text}") for note in scene.notes]
+    if scene.status != "ok":
+        report.notes.append(Note("warning", f"nominal scene: no answer: {scene.message}"))
+    study_charts = charts(result) if report.status == "ok" else []
+    scene_charts = [replace(c, title=f"Nominal scene: {c.title}") for c in nominal.charts]
+    nominal.report, nominal.charts = report, [*study_charts, *scene_charts]
+    nominal.inputs_title = "Inputs of the nominal scene"
+    return nominal
 
 
 def to_columns(result: StudyResult) -> tuple[list[str], list[Any]]:
@@ -269,21 +374,29 @@ def charts(result: StudyResult) -> list[Any]:
         density = counts / max(finite.size, 1) / np.diff(edges)
         marks = []
         if key in limits:
-            for bound in (limits[key].above, limits[key].below):
+            limit = limits[key]
+            chance = (
+                f"P(exceed) = {format_value(limit.probability, 3)}"
+                if math.isfinite(limit.probability)
+                else "no sample"
+            )
+            for bound, side in ((limit.above, ">"), (limit.below, "<")):
                 if bound is not None:
-                    marks.append(Mark("x", bound, "limit"))
+                    text = f"limit {side} {format_value(bound)} {s.unit}".rstrip()
+                    marks.append(Mark("x", bound, f"{text}: {chance}", "limit"))
         out.append(
             Chart(
                 f"{key}: histogram of {finite.size:,} samples",
                 f"{key}{unit}",
                 "probability density",
-                [Series("", edges.tolist(), [*density.tolist(), 0.0], "step")],
+                [Series("", edges.tolist(), [*density.tolist(), 0.0], "histogram")],
                 marks,
             )
         )
         step = max(1, finite.size // 2000)
-        xs = finite[::step]
-        ys = (np.arange(finite.size)[::step] + 1) / finite.size
+        index = np.unique(np.append(np.arange(0, finite.size, step), finite.size - 1))
+        xs = finite[index]  # every step-th sample and the largest
+        ys = (index + 1) / finite.size
         out.append(
             Chart(
                 f"{key}: CDF",

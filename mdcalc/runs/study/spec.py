@@ -264,17 +264,19 @@ class Distribution:
         return x
 
     def describe(self, unit: str) -> str:
+        """The distribution in the key's unit, every number with the digits to check
+        it by eye against what the file wrote (12 significant)."""
         u = f" {unit}" if unit else ""
         if self.kind in ("normal", "lognormal"):
-            text = f"{self.kind}(mean {self.a:.6g}, sd {self.b:.6g}){u}"
+            text = f"{self.kind}(mean {self.a:.12g}, sd {self.b:.12g}){u}"
             if self.lower is not None or self.upper is not None:
-                lo = "-∞" if self.lower is None else f"{self.lower:.6g}"
-                hi = "∞" if self.upper is None else f"{self.upper:.6g}"
+                lo = "-∞" if self.lower is None else f"{self.lower:.12g}"
+                hi = "∞" if self.upper is None else f"{self.upper:.12g}"
                 text += f" truncated to [{lo}, {hi}]"
             return text
         if self.kind == "uniform":
-            return f"uniform({self.a:.6g} … {self.b:.6g}){u}"
-        return f"triangular({self.a:.6g}, mode {self.c:.6g}, {self.b:.6g}){u}"
+            return f"uniform({self.a:.12g} … {self.b:.12g}){u}"
+        return f"triangular({self.a:.12g}, mode {self.c:.12g}, {self.b:.12g}){u}"
 
     def moments(self) -> tuple[float, float]:
         """Mean and standard deviation of the untruncated distribution."""
@@ -305,6 +307,8 @@ class Plan:
     inputs: list[Input]
     nominal: Any  # the scene validated, as written
     expect: dict[str, Any] = field(default_factory=dict)
+    #: The scene as validated (its quantity strings' conversions); None: not kept.
+    scene_case: CaseText | None = None
 
     @property
     def keys(self) -> list[str]:
@@ -323,7 +327,8 @@ def plan(case: CaseText) -> Plan:
     spec_problem = problem_of(case)
     module = spec_problem.load()
     scene_data = {k: v for k, v in case.data.items() if k not in ("study", "expect")}
-    nominal = validate(module.Case, CaseText(case.path, case.text, scene_data))
+    scene = CaseText(case.path, case.text, scene_data)
+    nominal = validate(module.Case, scene)
     own: dict[str, Any] = {
         k: case.data[k] for k in ("problem", "title", "study", "expect") if k in case.data
     }
@@ -338,7 +343,8 @@ def plan(case: CaseText) -> Plan:
     if problems:
         raise InputError(case.path, problems)
     _median_scene_is_valid(module.Case, case, scene_data, inputs)
-    return Plan(case, spec_problem.name, scene_data, spec, inputs, nominal, dict(doc.expect or {}))
+    expect = dict(doc.expect or {})
+    return Plan(case, spec_problem.name, scene_data, spec, inputs, nominal, expect, scene)
 
 
 def _median_scene_is_valid(
