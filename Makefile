@@ -27,6 +27,7 @@ test: $(VENV)/.installed-test
 	$(BIN)/ruff check mdcalc tests bench
 	$(BIN)/ruff format --check mdcalc tests bench
 	$(BIN)/mypy mdcalc
+	$(BIN)/mypy --strict --follow-imports=silent mdcalc/__init__.py mdcalc/api  # the API
 	$(BIN)/pytest -n auto --maxprocesses 4  # one worker per core (CI: 2), at most 4
 	$(BIN)/mdcalc check cases --jobs 0
 

@@ -63,3 +63,15 @@ class InputError(MdcalcError, ValueError):
 
     def __str__(self) -> str:
         return "\n".join(p.format(self.file) for p in self.problems)
+
+
+class NoAnswer(MdcalcError):
+    """A valid scene without an answer, raised only where asked for
+    (``mdcalc.solve(..., raise_on_no_answer=True)``); ``calculation`` says why."""
+
+    exit_code = EXIT_NO_ANSWER
+
+    def __init__(self, message: str, calculation: object = None) -> None:
+        super().__init__(message)
+        self.message = message
+        self.calculation = calculation

@@ -6,6 +6,7 @@ The layers, top to bottom (``ls mdcalc/`` shows them)::
 
     mdcalc (the package's face: no module of it imports it)
     cli          the console entry, the typer app, command bodies, terminal helpers
+    api          the calculations from Python (mdcalc.solve, Calculation)
     runs         one case under its budget, pool, cluster, batch, check, sweep, study
     problems     the registry, one package or module per problem
     domain       data and case sections several problems share (no problem of its own)
@@ -145,6 +146,7 @@ def test_every_problem_shows_the_registry_face(name):
 RANK = {
     "mdcalc": 0,
     "cli": 1,
+    "api": 1.5,
     "runs": 2,
     "problems": 3,
     "domain": 3.5,
@@ -251,7 +253,7 @@ def test_the_tree_shows_the_layers():
     loose = {p.name for p in PACKAGE.iterdir() if p.suffix == ".py"}
     folders = {p.name for p in PACKAGE.iterdir() if (p / "__init__.py").exists()}
     assert loose == LOOSE and len(loose) <= 6
-    assert folders == {"cli", "runs", "problems", "domain", "input", "output", "core"}
+    assert folders == {"cli", "api", "runs", "problems", "domain", "input", "output", "core"}
 
 
 #: The __init__.py files that carry a docstring only: a package's __init__ runs on
@@ -269,12 +271,26 @@ def test_a_layer_init_imports_nothing(folder):
     assert imported == []
 
 
-def test_the_package_init_imports_its_version_alone():
+def test_the_package_init_imports_the_leaves_and_the_api_on_first_use():
+    """The package's __init__ runs on the import of any module inside it (a piped
+    scene pays for it): at its top only the leaves; the API when a name of it is
+    first read (issue 34: ``import mdcalc`` loads nothing heavy, tests/test_api.py)."""
     tree = ast.parse((PACKAGE / "__init__.py").read_text(encoding="utf-8"))
-    imported = [
-        ast.unparse(n) for n in ast.walk(tree) if isinstance(n, ast.Import | ast.ImportFrom)
+    top = [ast.unparse(n) for n in tree.body if isinstance(n, ast.Import | ast.ImportFrom)]
+    assert top == [
+        "from __future__ import annotations",
+        "from typing import TYPE_CHECKING, Any",
+        "from mdcalc._version import __version__",
+        "from mdcalc.errors import InputError, NoAnswer",
     ]
-    assert imported == ["from mdcalc._version import __version__"]
+    deferred = {
+        ast.unparse(n)
+        for f in tree.body
+        if isinstance(f, ast.FunctionDef)
+        for n in ast.walk(f)
+        if isinstance(n, ast.Import | ast.ImportFrom)
+    }
+    assert deferred == {"from mdcalc import api"}
 
 
 def test_the_console_script_is_where_pyproject_says():

@@ -231,3 +231,29 @@ def test_the_masks_keep_numbers_and_drop_run_times():
     assert masked(" Run time, in all   1.64 s ") == masked(" Run time, in all   782 ms ")
     assert masked(" Samples per second  3,831,247 ") == masked(" Samples per second  41,002 ")
     assert masked(" Samples   100000 ") != masked(" Samples   100001 ")
+
+
+#: Pages with Python examples (``pycon`` blocks, ``>>>`` prompts): run by doctest.
+PYTHON_PAGES = [page for page in PAGES if "\n>>> " in page.read_text(encoding="utf-8")]
+
+
+@pytest.mark.parametrize("page", PYTHON_PAGES, ids=lambda p: str(p.relative_to(ROOT)))
+def test_the_pages_python_examples_print_what_they_say(page, monkeypatch):
+    """Issue 34.4: every ``>>>`` example of a page runs, in order, in one namespace,
+    from the repository's root (``cases/`` is the shipped cases), and prints the
+    page's text (doctest; ``...`` matches anything, runs of spaces are one)."""
+    import doctest
+
+    monkeypatch.chdir(ROOT)
+    text = page.read_text(encoding="utf-8")
+    test = doctest.DocTestParser().get_doctest(text, {}, page.name, str(page), 0)
+    assert test.examples, "no example found"
+    flags = doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE
+    runner = doctest.DocTestRunner(optionflags=flags)
+    out: list[str] = []
+    runner.run(test, out=out.append)
+    assert runner.failures == 0, "".join(out)
+
+
+def test_the_python_page_is_run():
+    assert ROOT / "docs" / "python.md" in PYTHON_PAGES

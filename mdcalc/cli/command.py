@@ -105,10 +105,9 @@ def run_problem(
         from mdcalc.output.jsondoc import to_json
 
         check_outputs(case, plot, save, force, document)
-        from mdcalc.input.casefile import read_case
-        from mdcalc.runs.runner import solve_text
+        from mdcalc.api import solve  # the one path, as from Python
 
-        run = solve_text(read_case(case), expected_problem=spec.name, time_limit=time_limit)
+        run = solve(case, spec.name, time_limit=time_limit).run
         report = run.report
         charts = _charts(run, plot) if plot is not None else []
         if as_json:

@@ -15,11 +15,10 @@ from mdcalc.problems import PROBLEMS
 
 def problem_schema(problem: str) -> dict[str, Any]:
     """The JSON Schema of ``problem``'s case files, study files included."""
-    from mdcalc.input.schema import case_schema
-    from mdcalc.runs.study.spec import StudySpec
+    from mdcalc.api import registry
 
     _known(problem, "mdcalc schema")
-    return case_schema(PROBLEMS[problem].load().Case, problem, {"study": StudySpec})
+    return registry()[problem].schema()
 
 
 def _known(problem: str, command: str) -> None:

@@ -77,9 +77,14 @@ def read_case(path: Path) -> CaseText:
     base may have a base of its own (at most :data:`MAX_BASES` files, no cycle). The
     data is the merged scene, without ``base``; the text stays the file's own (a key
     the file does not write has no line in a message)."""
-    case = _read_one(path)
+    return with_base(_read_one(path))
+
+
+def with_base(case: CaseText) -> CaseText:
+    """``case`` with the keys of its ``base`` (a path from the file's folder; from the
+    current directory for a text given from Python) it does not give itself."""
     if "base" in case.data:
-        case.data = _with_base(case, [path], case.bases)
+        case.data = _with_base(case, [case.path], case.bases)
     return case
 
 
@@ -152,6 +157,11 @@ def _read_one(path: Path) -> CaseText:
         bad_line = raw[: exc.start].count(b"\n") + 1
         problem = Problem("not a UTF-8 text file (TOML must be UTF-8)", line=bad_line)
         raise InputError(path, [problem]) from None
+    return case_from_text(path, text)
+
+
+def case_from_text(path: Path, text: str) -> CaseText:
+    """TOML text, parsed as a case file named ``path`` (``<string>`` from Python)."""
     try:
         data = tomli.loads(text)
     except RecursionError:  # tomli's own limits: 400 levels of brackets, 1000 key parts

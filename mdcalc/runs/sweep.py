@@ -51,12 +51,16 @@ class Vary:
     start: float
     stop: float
     count: int
+    #: The values themselves, where they were listed (from Python) and not spaced.
+    listed: tuple[float, ...] | None = None
 
     @property
     def loc(self) -> tuple[str | int, ...]:
         return tuple(int(p) if p.isdigit() else p for p in self.key.split("."))
 
     def values(self) -> list[float]:
+        if self.listed is not None:
+            return list(self.listed)
         if self.count == 1:
             return [self.start]
         step = (self.stop - self.start) / (self.count - 1)
@@ -117,14 +121,15 @@ class Plan:
         return data
 
 
-def plan(path: Path, varies: Sequence[Vary]) -> Plan:
+def plan(path: Path | CaseText, varies: Sequence[Vary]) -> Plan:
     """Read the case, check the keys, and validate the corners of the grid.
 
     Field bounds are checked at every corner (2^k of them), so a grid whose ends are
     valid is valid along its axes; a cross-field rule broken inside the grid shows up
     as an invalid point.
     """
-    case = read_case(path)
+    case = read_case(path) if isinstance(path, Path) else path  # (a text from Python)
+    path = case.path
     spec = problem_of(case)
     module = spec.load()
     validate(module.Case, case)  # the base case itself
