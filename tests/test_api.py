@@ -139,6 +139,13 @@ def test_a_path_that_is_not_there_and_a_wrong_problem_are_input_errors():
         mdcalc.solve(CASES / "braking" / "lecture.toml", "hoist")
     with pytest.raises(TypeError):
         mdcalc.solve(42)  # type: ignore[arg-type]
+    with pytest.raises(mdcalc.InputError, match=r"a str is TOML text: give Path\("):
+        mdcalc.solve(str(CASES / "braking" / "lecture.toml"))
+    study = CASES / "studies" / "coupling_scatter.toml"
+    with pytest.raises(mdcalc.InputError, match=r"run it with mdcalc study "):
+        mdcalc.solve(study)  # as the command line says it
+    with pytest.raises(mdcalc.InputError, match=r"run it with mdcalc\.study"):
+        mdcalc.solve(study.read_text(encoding="utf-8"))
 
 
 def test_no_answer_is_a_status_or_if_asked_an_exception():

@@ -32,7 +32,7 @@ from typing import Any
 from mdcalc.api.calculation import Calculation, MethodsView
 from mdcalc.api.cases import DICT, case_of, lineless
 from mdcalc.api.many import StudyResult, SweepResult, study, sweep
-from mdcalc.errors import InputError, NoAnswer
+from mdcalc.errors import InputError, NoAnswer, Problem
 
 __all__ = [
     "Calculation",
@@ -65,6 +65,10 @@ def solve(
     from mdcalc.runs.runner import solve_text
 
     read = case_of(case, problem)
+    if "study" in read.data and not isinstance(case, Path):  # (a file: the command's)
+        where = read.line_of(("study",))
+        why = "a study file (it has a [study] table): run it with mdcalc.study(...)"
+        raise InputError(read.path, [Problem(why, "study", where)])
     try:
         run = solve_text(read, expected_problem=problem, time_limit=time_limit)
     except InputError as exc:

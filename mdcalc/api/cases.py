@@ -20,6 +20,9 @@ def case_of(case: Path | str | Mapping[str, Any], problem: str | None) -> Any:
     if isinstance(case, Path):
         return read_case(case)
     if isinstance(case, str):
+        if "\n" not in case and "=" not in case and case.strip().endswith(".toml"):
+            why = f"{case!r} is a file name, and a str is TOML text: give Path({case!r})"
+            raise InputError(STRING, [Problem(why)])
         read = case_from_text(Path(STRING), case)
     elif isinstance(case, Mapping):
         import tomli_w
