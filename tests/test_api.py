@@ -19,8 +19,10 @@ import mdcalc
 from mdcalc.problems import PROBLEMS
 from tests.conftest import CASES
 
-#: One case of each problem (the first of its folder), run the three ways.
-SAMPLE = [sorted((CASES / name).glob("*.toml"))[0] for name in sorted(PROBLEMS)]
+#: One case of each problem (the first of its folder; the mechanism's quickest, not
+#: the crank press's 2 s of ODE), run the three ways.
+QUICKER = {"mechanism": CASES / "mechanism" / "linear_torque.toml"}
+SAMPLE = [QUICKER.get(name, sorted((CASES / name).glob("*.toml"))[0]) for name in sorted(PROBLEMS)]
 #: Heavy modules a bare ``import mdcalc`` must not load.
 HEAVY = ("numpy", "scipy", "pint", "rich", "pydantic", "typer", "matplotlib", "pandas")
 
