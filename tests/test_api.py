@@ -231,5 +231,6 @@ def test_a_sweep_gives_the_command_lines_columns(cli, tmp_path):
     assert list(result.columns["vehicle.initial_speed_kmh"]) == speeds
     assert list(result.columns["stopping_distance"]) == command["values"]["stopping_distance"]
     assert list(result.status) == command["status"] == [0, 0, 0, 0]
-    with pytest.raises(mdcalc.InputError, match="finite"):
-        mdcalc.sweep(path, {"vehicle.initial_speed_kmh": []})
+    for bad in ([], [40.0, float("nan")], ["fast"], 40.0):
+        with pytest.raises(mdcalc.InputError, match="finite"):
+            mdcalc.sweep(path, {"vehicle.initial_speed_kmh": bad})

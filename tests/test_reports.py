@@ -104,7 +104,13 @@ def _check_json_units(report, where: str) -> None:
     """Every unit of the report, in the JSON's ASCII form, reads back with pint as a
     unit (``N*m/rad^n``, a power law's stiffness, is the one documented exception)."""
     from mdcalc.input.quantities import registry
-    from mdcalc.output.report import MethodsTable, Quantities, Table, ascii_unit
+    from mdcalc.output.report import (
+        NO_PINT_UNIT,
+        MethodsTable,
+        Quantities,
+        Table,
+        ascii_unit,
+    )
 
     units = set()
     for section in report.sections:
@@ -117,7 +123,7 @@ def _check_json_units(report, where: str) -> None:
     ureg = registry()
     for unit in sorted(units):
         text = ascii_unit(unit)
-        if text and text != "N*m/rad^n":
+        if text and text != NO_PINT_UNIT:
             ureg.Unit(text)  # raises on a unit pint cannot read
             assert not re.search(r"[^\x20-\x7e]", text), f"{where}: {text!r} is not ASCII"
 

@@ -54,7 +54,7 @@ class Calculation:
         of :mod:`mdcalc.input.quantities`, where the radian is a unit of its own), a
         plain number where there is no unit, a bool or a string as it is, a list of
         numbers as a numpy array. Built when first read (pint takes ~0.3 s to load)."""
-        from mdcalc.output.report import ascii_unit
+        from mdcalc.output.report import NO_PINT_UNIT, ascii_unit
 
         out: dict[str, Any] = {}
         units = None
@@ -67,7 +67,7 @@ class Calculation:
 
                 value = np.asarray(value, dtype=float)
             unit = ascii_unit(q.unit)
-            if unit and not isinstance(value, bool | str) and unit != "N*m/rad^n":
+            if unit and not isinstance(value, bool | str) and unit != NO_PINT_UNIT:
                 if units is None:
                     from mdcalc.input.quantities import registry
 

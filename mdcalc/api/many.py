@@ -52,9 +52,9 @@ class StudyResult:
 
     def to_dict(self) -> dict[str, Any]:
         """The JSON of ``mdcalc study --json``: statistics, limits, Sobol indices."""
-        from mdcalc.runs.study.output import to_dict
+        from mdcalc.runs.study.output import to_json
 
-        loaded: dict[str, Any] = json.loads(json.dumps(to_dict(self.result)))
+        loaded: dict[str, Any] = json.loads(to_json(self.result, None))
         return loaded
 
     @property
@@ -162,7 +162,10 @@ def sweep(
 
     varies = []
     for key, values in vary.items():
-        listed = tuple(float(v) for v in values)
+        try:
+            listed = tuple(float(v) for v in values)
+        except (TypeError, ValueError):
+            listed = ()
         if not listed or not all(math.isfinite(v) for v in listed):
             raise InputError(f"vary {key}", [Problem("give one or more finite numbers")])
         varies.append(Vary(key, listed[0], listed[-1], len(listed), listed))

@@ -371,7 +371,7 @@ def renderer_points(ax: Any) -> float:
 def covers(box: Any, shapes: list[tuple[Any, float]]) -> bool:
     """Does the display box ``box`` (a legend's) cover any of ``shapes``?"""
     for path, size in shapes:
-        grown = box.expanded(1.0, 1.0).padded(size) if size else box
+        grown = box.padded(size) if size else box
         if len(path.vertices) == 1:
             if grown.contains(*path.vertices[0]):
                 return True

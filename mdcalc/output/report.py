@@ -177,6 +177,11 @@ _PLAIN = {v: k for k, v in zip("0123456789-+n", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻�
 _ASCII_NAMES = {"g": "g_0", "×": ""}
 
 
+#: The one JSON unit pint cannot read: a power law's stiffness, n being the case's
+#: exponent, not a unit (docs/contract.md).
+NO_PINT_UNIT = "N*m/rad^n"
+
+
 def ascii_unit(unit: str) -> str:
     """A unit as the JSON writes it: ASCII that pint parses to the same unit
     (``kg·m²`` → ``kg*m^2``, ``1/s²`` → ``1/s^2``, ``N·m/radⁿ`` → ``N*m/rad^n``,
