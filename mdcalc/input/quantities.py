@@ -85,6 +85,8 @@ def registry() -> Any:
     ureg.load_definitions(lines)
     for definition in _ADDED:
         ureg.define(definition)
+    # units printed in the order written (N·m, not pint's alphabetical m·N)
+    ureg.formatter.default_sort_func = None
     return ureg
 
 

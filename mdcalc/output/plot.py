@@ -178,9 +178,7 @@ def figure_of(charts: Sequence[Chart], title: str = "", titled: bool = True) -> 
     matplotlib's constrained layout: a figure title keeps its own space, and each
     legend stands where it covers no drawn line (:func:`_place_legend`). ``titled``
     False: no chart titles (a document's caption gives them)."""
-    import matplotlib
-
-    matplotlib.use("Agg")
+    import matplotlib  # no matplotlib.use: a notebook keeps its own backend
     from cycler import cycler
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
