@@ -214,7 +214,10 @@ def test_sweep_and_run_take_the_scheduler(tmp_path):
     [("local:0", "1 to 256"), ("nonsense", "tcp://HOST:PORT"),
      ("tcp://127.0.0.1:9", "cannot reach")],
 )  # fmt: skip
-def test_a_bad_scheduler_is_exit_2(tmp_path, address, message):
-    done = run_script("study", study_path(tmp_path, 4), "--scheduler", address)
-    assert done.returncode == 2, done.stderr
+def test_a_bad_scheduler_is_exit_2(tmp_path, address, message, cli, monkeypatch):
+    from mdcalc.runs import cluster
+
+    monkeypatch.setattr(cluster, "CONNECT_SECONDS", 1)  # a refused port: dask retries
+    done = cli("study", study_path(tmp_path, 4), "--scheduler", address)
+    assert done.exit_code == 2, done.stderr
     assert message in done.stderr and "Traceback" not in done.stderr

@@ -24,14 +24,14 @@ pytestmark = pytest.mark.skipif(sys.platform == "win32", reason="POSIX process g
 FILES = 10
 
 
-def slow_folder(tmp_path: Path) -> Path:
-    """FILES copies of a mechanism scene of about a second each (40 revolutions)."""
+def slow_folder(tmp_path: Path, files: int = FILES) -> Path:
+    """``files`` copies of a mechanism scene of about a second each (40 revolutions)."""
     data = tomllib.loads((CASES / "mechanism/crank_press.toml").read_text(encoding="utf-8"))
     data.pop("expect")
     data["motion"]["revolutions"] = 40
     folder = tmp_path / "slow"
     folder.mkdir()
-    for index in range(FILES):
+    for index in range(files):
         (folder / f"c{index:02d}.toml").write_text(tomli_w.dumps(data), encoding="utf-8")
     return folder
 
@@ -93,7 +93,7 @@ def test_ctrl_c_stops_a_batch_at_once_with_one_line(tmp_path):
 
 
 def test_results_stream_in_input_order(tmp_path):
-    folder = slow_folder(tmp_path)
+    folder = slow_folder(tmp_path, files=6)
     process = start("run", str(folder), "--json", "--jobs", "2")
     assert process.stdout is not None
     first = process.stdout.readline()  # before the batch is over
