@@ -17,7 +17,7 @@ import pytest
 
 import mdcalc
 from mdcalc.problems import PROBLEMS
-from tests.conftest import CASES
+from tests.conftest import CASES, comparable_json
 
 #: One case of each problem (the first of its folder; the mechanism's quickest, not
 #: the crank press's 2 s of ODE), run the three ways.
@@ -25,18 +25,6 @@ QUICKER = {"mechanism": CASES / "mechanism" / "linear_torque.toml"}
 SAMPLE = [QUICKER.get(name, sorted((CASES / name).glob("*.toml"))[0]) for name in sorted(PROBLEMS)]
 #: Heavy modules a bare ``import mdcalc`` must not load.
 HEAVY = ("numpy", "scipy", "pint", "rich", "pydantic", "typer", "matplotlib", "pandas")
-
-
-def _comparable(document: dict) -> dict:
-    """A JSON document without what differs between two runs of one case: run times,
-    and the case's name (a file's path, ``<string>``, ``<dict>``)."""
-    text = json.dumps({k: v for k, v in document.items() if k != "case"}, sort_keys=True)
-    masked = json.loads(text)
-    for section in masked["sections"]:
-        for row in section.get("rows", []):
-            if isinstance(row, dict) and "seconds" in row:
-                row["seconds"] = None
-    return masked
 
 
 def test_import_loads_nothing_heavy_and_is_quick():
@@ -55,22 +43,18 @@ def test_import_loads_nothing_heavy_and_is_quick():
 
 
 @pytest.mark.parametrize("path", SAMPLE, ids=lambda p: f"{p.parent.name}/{p.name}")
-def test_solve_gives_the_command_lines_json_from_a_file_text_and_dict(
-    path, cli, monkeypatch, capsys
-):
+def test_solve_gives_the_command_lines_json_from_text_and_a_dict(path, cli, monkeypatch, capsys):
+    """A file: every shipped case, tests/test_cases.py."""
     monkeypatch.chdir(path.parent)  # a base = "..." of a text or dict: from here
     problem = tomllib.loads(path.read_text(encoding="utf-8"))["problem"]
     command = json.loads(cli(problem, path, "--json").stdout)
     capsys.readouterr()
-    want = _comparable(command)
-    from_file = mdcalc.solve(path)
-    assert from_file.case == command["case"] == str(path)
-    assert _comparable(from_file.to_dict()) == want
+    want = comparable_json(command)
     text = path.read_text(encoding="utf-8")
-    assert _comparable(mdcalc.solve(text).to_dict()) == want
+    assert comparable_json(mdcalc.solve(text).to_dict()) == want
     data = tomllib.loads(text)
     data.pop("problem")  # named by the argument instead
-    assert _comparable(mdcalc.solve(data, problem).to_dict()) == want
+    assert comparable_json(mdcalc.solve(data, problem).to_dict()) == want
     assert capsys.readouterr() == ("", "")  # nothing printed
 
 

@@ -22,22 +22,29 @@ def test_every_problem_has_cases_and_extreme_cases():
 
 
 @pytest.mark.parametrize("path", FILES, ids=[str(p.relative_to(CASES)) for p in FILES])
-def test_case_meets_its_expectations_with_finite_json(path):
-    # One run per file: the [expect] table as `mdcalc check` reads it, and the JSON
-    # strict (no NaN, no Infinity) with every number finite.
-    from mdcalc.input.casefile import read_case
-    from mdcalc.input.model import CaseBase
-    from mdcalc.output.jsondoc import to_json
-    from mdcalc.runs.check import within
-    from mdcalc.runs.runner import run_text
-    from tests.conftest import strict_json, walk_finite
+def test_case_meets_its_expectations_with_finite_json(path, cli):
+    # Through the Python API (mdcalc.solve): the [expect] table as `mdcalc check`
+    # reads it, the JSON strict (no NaN, no Infinity) with every number finite, and
+    # that JSON the command line's (issue 34: every shipped case, in-process).
+    import tomllib
 
-    case = read_case(path)
-    report = run_text(case)
-    walk_finite(strict_json(to_json(report)))
-    assert "expect" in case.data, "a shipped case must have an [expect] table"
-    expectations = CaseBase.model_validate({"expect": case.data["expect"]}).expect or {}
-    results = report.results()
+    import mdcalc
+    from mdcalc.input.model import CaseBase
+    from mdcalc.runs.check import within
+    from tests.conftest import comparable_json, strict_json, walk_finite
+
+    calc = mdcalc.solve(path)
+    document = strict_json(calc.to_json())
+    walk_finite(document)
+    command = cli(document["problem"], path, "--json")
+    assert command.exit_code == (0 if calc.status == "ok" else 3), command.stderr
+    told = strict_json(command.stdout)
+    assert told["case"] == document["case"] == str(path)
+    assert comparable_json(told) == comparable_json(document)
+    data = tomllib.loads(path.read_text(encoding="utf-8"))
+    assert "expect" in data, "a shipped case must have an [expect] table"
+    expectations = CaseBase.model_validate({"expect": data["expect"]}).expect or {}
+    results = calc.run.report.results()
     failed = [
         (key, e.value, results[key].value if key in results else "no such result")
         for key, e in expectations.items()
