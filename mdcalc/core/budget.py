@@ -116,6 +116,7 @@ def paused() -> Iterator[None]:
 def limit(seconds: float | None) -> Iterator[Budget]:
     """Run the body under a time limit of ``seconds`` (None or inf: no limit)."""
     budget = Budget(math.inf if seconds is None else float(seconds))
+    _watch_collector()
     outer = current()
     saved = _save_alarm()
     _local.budget = budget
@@ -149,6 +150,24 @@ def share(fraction: float = METHOD_SHARE) -> Iterator[float]:
         budget.deadlines.pop()
 
 
+@contextmanager
+def allot(seconds: float) -> Iterator[float]:
+    """A deadline ``seconds`` from now for one part of the work (never past the one
+    in force; without a budget, the part's own). Yields the seconds granted."""
+    budget = current()
+    if budget is None or not budget.deadlines:
+        with limit(seconds) as own:
+            yield own.seconds
+        return
+    now = time.perf_counter()
+    deadline = min(now + max(seconds, 0.0), budget.deadline)
+    budget.deadlines.append(deadline)
+    try:
+        yield deadline - now
+    finally:
+        budget.deadlines.pop()
+
+
 def _alarm(signum: int, frame: Any) -> None:
     """SIGALRM, every TICK seconds of a limited case: stop a loop that does not check
     once the innermost deadline is GRACE behind it."""
@@ -156,8 +175,24 @@ def _alarm(signum: int, frame: Any) -> None:
     if budget is None or not budget.deadlines:
         return  # stale: the limit it was set for has ended
     late = time.perf_counter() > budget.deadline + GRACE and not budget.paused
-    if late and not _in_finalizer(frame) and not _importing(frame):
+    if late and not _collecting[0] and not _in_finalizer(frame) and not _importing(frame):
         raise OverBudget
+
+
+#: Is the garbage collector running? What it runs meanwhile (a weakref's callback, a
+#: finalizer) cannot pass an exception on: Python prints it and drops it.
+_collecting = [False]
+
+
+def _collector(phase: str, info: dict[str, Any]) -> None:
+    _collecting[0] = phase == "start"
+
+
+def _watch_collector() -> None:
+    import gc
+
+    if _collector not in gc.callbacks:
+        gc.callbacks.insert(0, _collector)  # before any other: its time is the collector's
 
 
 #: Code where an exception cannot stop anything: Python swallows it with an
