@@ -20,12 +20,23 @@ from __future__ import annotations
 
 import importlib
 import math
+import threading
 import time
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Iterator, Mapping
+from contextlib import contextmanager
 from dataclasses import dataclass
+from functools import partial
+from typing import Any
 
 from mdcalc.core import budget
-from mdcalc.output.report import MethodQuantity, MethodRow, MethodsTable
+from mdcalc.output.report import (
+    Column,
+    MethodQuantity,
+    MethodRow,
+    MethodsTable,
+    Table,
+    Value,
+)
 
 #: Cheap methods are repeated until this much time has passed, so that a
 #: microsecond-scale run time is a mean over many calls, not timer noise.
@@ -49,6 +60,12 @@ class Method:
     #: May this method stand in for a reference that ran over the time budget, and
     #: how good is it (the finished method of the highest accuracy is taken)? 0: no.
     accuracy: int = 0
+    #: An ODE method: the same computation at a relative tolerance ``rtol`` (its
+    #: integrator chosen by :func:`mdcalc.core.ode.integrator`), for the
+    #: work-precision ladder. The rows of one ODE computation at several tolerances
+    #: share one function (one ladder); ``ladder_label`` names it where a table has two.
+    ladder: Callable[[float], Mapping[str, float]] | None = None
+    ladder_label: str = ""
 
 
 def timed(run: Callable[[], Mapping[str, float]]) -> tuple[Mapping[str, float], float]:
@@ -144,7 +161,206 @@ def compare(
             ref = reference_values.get(q.key)
             if value is not None and ref is not None and not row.reference:
                 row.rel_errors[q.key] = relative_error(value, ref)
+    if _asked.ladders is not None and any(m.ladder is not None for m in methods):
+        _asked.ladders.append(_ladder(title, key, methods, rows, reference_values))
     return MethodsTable(title, key, quantities, rows)
+
+
+# ---------------------------------------------------------------- work-precision ladders
+
+#: The rungs of a ladder: rtol from 1e-3 to 1e-12 (each ODE run scales its atol
+#: with it).
+LADDER_RTOLS = tuple(10.0**-k for k in range(3, 13))
+#: What the ladders of a scene may spend together: LADDER_SECONDS [s] from the
+#: first (without a budget too), and never past the scene's budget; each ladder
+#: takes LADDER_SHARE of what is left of both (a second table's ladder gets the
+#: rest), and its integrators share that equally.
+LADDER_SHARE = 0.6
+LADDER_SECONDS = 30.0
+#: A rung is not started when the last one's run time times this is more than the
+#: integrator has left: a tighter tolerance costs more.
+GROWTH = 2.0
+#: How each integrator is drawn and named: its family.
+FAMILIES = {
+    "RK23": "explicit",
+    "RK45": "explicit",
+    "DOP853": "explicit",
+    "Radau": "implicit",
+    "BDF": "implicit",
+    "LSODA": "switching",
+}
+
+
+@dataclass
+class Rung:
+    """One point of a work-precision diagram: an integrator at a tolerance, or a
+    method that has no tolerance (a closed form: ``family`` "single")."""
+
+    method: str
+    family: str
+    rtol: float | None
+    #: The largest relative error of the table's quantities against its reference.
+    error: float | None
+    seconds: float | None
+    evaluations: int | None
+    status: str = "ok"
+
+
+@dataclass
+class Ladder:
+    """The work-precision diagram of one Methods table."""
+
+    title: str
+    key: str
+    reference: str
+    rungs: list[Rung]
+
+
+class _Asked(threading.local):
+    ladders: list[Ladder] | None = None
+    #: When the ladders of this scene must end (perf_counter), set by the first.
+    deadline: float | None = None
+
+
+_asked = _Asked()
+
+
+@contextmanager
+def work_precision() -> Iterator[list[Ladder]]:
+    """Every :func:`compare` in the body with an ODE method also runs its ladder:
+    each of scipy's integrators over :data:`LADDER_RTOLS`; the ladders are
+    collected into the yielded list."""
+    saved = _asked.ladders, _asked.deadline
+    collected: list[Ladder] = []
+    _asked.ladders, _asked.deadline = collected, None
+    try:
+        yield collected
+    finally:
+        _asked.ladders, _asked.deadline = saved
+
+
+def _ladder(
+    title: str,
+    key: str,
+    methods: list[Method],
+    rows: list[MethodRow],
+    reference: Mapping[str, float],
+) -> Ladder:
+    from mdcalc.core.ode import SOLVERS
+
+    rungs = [
+        Rung(
+            row.method,
+            "single",
+            None,
+            max(e for e in row.rel_errors.values() if e is not None),
+            row.seconds,
+            None,
+        )  # fmt: skip
+        for method, row in zip(methods, rows, strict=True)
+        if method.ladder is None
+        and row.seconds is not None
+        and any(e is not None for e in row.rel_errors.values())
+    ]
+    runs: dict[int, Method] = {}  # one ladder per ODE computation
+    for method in methods:
+        if method.ladder is not None:
+            runs.setdefault(id(method.ladder), method)
+    named = [row.method for row in rows if row.reference]
+    now = time.perf_counter()
+    if _asked.deadline is None:
+        _asked.deadline = now + LADDER_SECONDS
+    mine = min(budget.remaining(), _asked.deadline - now) * LADDER_SHARE
+    with budget.allot(mine):
+        deadline = time.perf_counter() + max(mine, 0.0)
+        for method in runs.values():
+            assert method.ladder is not None
+            for index, solver in enumerate(SOLVERS):
+                left = (deadline - time.perf_counter()) / (len(SOLVERS) - index) / len(runs)
+                label = f"{method.ladder_label}: {solver}" if method.ladder_label else solver
+                with budget.allot(left):
+                    rungs += _rungs(label, solver, method.ladder, reference)
+    return Ladder(title, key, named[0] if named else "", rungs)
+
+
+def _rungs(
+    label: str,
+    solver: str,
+    run: Callable[[float], Mapping[str, float]],
+    reference: Mapping[str, float],
+) -> list[Rung]:
+    """``run`` with ``solver`` at each tolerance, loose to tight, until the time
+    allotted ends; the rungs after are said to be skipped."""
+    from mdcalc.core.ode import integrator
+
+    family = FAMILIES[solver]
+    rungs: list[Rung] = []
+    last = 0.0
+    stop = ""
+    for rtol in LADDER_RTOLS:
+        if not stop and last * GROWTH > budget.remaining():
+            stop = "skipped: would run over the time budget"
+        if stop:
+            rungs.append(Rung(label, family, rtol, None, None, None, stop))
+            continue
+        counts: list[int] = []  # the evaluations after each call: the first's count
+        try:
+            with integrator(solver) as counter:
+                values, seconds = timed(partial(_counted, run, rtol, counter, counts))
+            last = seconds
+        except budget.OverBudget:
+            rungs.append(Rung(label, family, rtol, None, None, None, "over the time budget"))
+            stop = "skipped: a looser tolerance ran over the time budget"
+            continue
+        except (NotApplicable, ArithmeticError) as reason:
+            rungs.append(Rung(label, family, rtol, None, None, None, _why_not(reason)))
+            continue
+        errors = [relative_error(v, reference[k]) for k, v in values.items() if k in reference]
+        if not errors or not all(math.isfinite(e) for e in errors):
+            rungs.append(Rung(label, family, rtol, None, seconds, counts[0], "failed: no value"))
+            continue
+        rungs.append(Rung(label, family, rtol, max(errors), seconds, counts[0]))
+    return rungs
+
+
+#: A work-precision table's key: ``work_precision.<its Methods table's key>``.
+LADDER_KEY = "work_precision"
+LADDER_COLUMNS = [
+    Column("method"),
+    Column("family"),
+    Column("rtol", kind="tolerance"),
+    Column("error", kind="error"),
+    Column("run time", "s", kind="seconds"),
+    Column("evaluations"),
+    Column("status"),
+]
+
+
+def ladder_table(ladder: Ladder) -> Table:
+    """A ladder as a report's table (JSON: ``kind`` "table", ``key``
+    ``work_precision.<key>``, one row a rung in :data:`LADDER_COLUMNS` order; ""
+    where a rung has no number: a closed form's rtol and evaluations, a run that
+    did not finish)."""
+    what = ladder.title.removeprefix("Methods: ")
+    rows: list[list[Value]] = [
+        [r.method, r.family, *["" if v is None else v for v in
+                               (r.rtol, r.error, r.seconds, r.evaluations)], r.status]
+        for r in ladder.rungs
+    ]  # fmt: skip
+    return Table(
+        f"Work–precision: {what} (error against {ladder.reference})",
+        f"{LADDER_KEY}.{ladder.key}",
+        list(LADDER_COLUMNS),
+        rows,
+    )
+
+
+def _counted(
+    run: Callable[[float], Mapping[str, float]], rtol: float, counter: Any, counts: list[int]
+) -> Mapping[str, float]:
+    values = run(rtol)
+    counts.append(counter.evaluations)
+    return values
 
 
 def _import(method: Method) -> None:

@@ -53,6 +53,7 @@ def solve(
     *,
     time_limit: float | None = 60.0,
     raise_on_no_answer: bool = False,
+    work_precision: bool = False,
 ) -> Calculation:
     """Read, validate, solve and report one case, as ``mdcalc PROBLEM CASE --json``.
 
@@ -60,8 +61,10 @@ def solve(
     or a ``dict`` (the same keys and quantity strings as a file). A relative path in
     a text or dict (``base = "other.toml"``) is taken from the current directory.
     ``problem`` may be left out when the case names it; given, it must agree.
-    ``time_limit`` in seconds (None: none). Raises :class:`InputError` for what the
-    command line refuses with exit 2."""
+    ``time_limit`` in seconds (None: none). ``work_precision``: also run each ODE
+    method's work-precision ladder, as ``--work-precision`` does (its tables in the
+    report, its charts in :meth:`Calculation.charts`). Raises :class:`InputError`
+    for what the command line refuses with exit 2."""
     from mdcalc.runs.runner import solve_text
 
     read = case_of(case, problem)
@@ -70,7 +73,7 @@ def solve(
         why = "a study file (it has a [study] table): run it with mdcalc.study(...)"
         raise InputError(read.path, [Problem(why, "study", where)])
     try:
-        run = solve_text(read, expected_problem=problem, time_limit=time_limit)
+        run = solve_text(read, problem, time_limit, work_precision)
     except InputError as exc:
         if isinstance(case, Mapping):  # the lines of a text the caller never saw
             raise InputError(DICT, [lineless(p) for p in exc.problems]) from None

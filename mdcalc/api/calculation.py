@@ -128,13 +128,14 @@ class Calculation:
 
     def charts(self) -> list[Any]:
         """The scene's charts as matplotlib Figures, one a chart (``--plot``'s; needs
-        matplotlib). An empty list where the scene draws none."""
+        matplotlib), then the work-precision diagrams where they were asked for
+        (``solve(..., work_precision=True)``). An empty list where there is none."""
+        from mdcalc.output import precision
         from mdcalc.output.plot import figure_of
 
         make = getattr(self.run.module, "charts", None)
-        if make is None or self.run.result is None:
-            return []
-        return [figure_of([chart]) for chart in make(self.run.result)]
+        scene = make(self.run.result) if make is not None and self.run.result is not None else []
+        return [figure_of([chart]) for chart in [*scene, *precision.charts(self.run.report)]]
 
     def _repr_html_(self) -> str:
         """A notebook shows the calculation report."""

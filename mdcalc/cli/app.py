@@ -160,6 +160,18 @@ ReportOption = Annotated[
 ]
 
 
+WorkPrecisionOption = Annotated[
+    Path | None,
+    typer.Option(
+        "--work-precision",
+        help="Run each ODE method with every scipy integrator over rtol 1e-3 ... 1e-12 and "
+        "draw error against run time and evaluations into FILE.png, .svg or .pdf "
+        "(needs mdcalc[plot]); the tables go into the report and the JSON.",
+        metavar="FILE",
+    ),
+]
+
+
 NoPlotForceOption = Annotated[
     bool, typer.Option("--force", help="Let --save and --report overwrite a file.")
 ]
@@ -170,6 +182,7 @@ def _make_problem_command(spec: ProblemSpec) -> Callable[..., None]:
         case: CaseArgument,
         as_json: JsonOption = False,
         plot: PlotOption = None,
+        work_precision: WorkPrecisionOption = None,
         save: SaveOption = None,
         report: ReportOption = None,
         force: ForceOption = False,
@@ -178,29 +191,44 @@ def _make_problem_command(spec: ProblemSpec) -> Callable[..., None]:
     ) -> None:
         limit = limit_of(time_limit)
         raise typer.Exit(
-            run_problem(spec, case, as_json, debug, plot, save, force, limit, document=report)
+            run_problem(
+                spec,
+                case,
+                as_json,
+                debug,
+                plot,
+                save,
+                force,
+                limit,
+                document=report,
+                work_precision=work_precision,
+            )  # fmt: skip
         )
 
     command.__doc__ = spec.summary
-    if spec.draws:
+    dropped = {"plot"} if not spec.draws else set()
+    if not spec.ladders:
+        dropped.add("work_precision")
+    if not dropped:
         return command
 
-    # A scene that draws nothing (braking): the same command without --plot.
+    # A scene that draws nothing (braking) or has no ODE method (clutch): the same
+    # command without --plot or --work-precision.
     import inspect
 
     signature = inspect.signature(command)
     parameters = [
-        p.replace(annotation=NoPlotForceOption) if p.name == "force" else p
+        p.replace(annotation=NoPlotForceOption) if p.name == "force" and not spec.draws else p
         for p in signature.parameters.values()
-        if p.name != "plot"
+        if p.name not in dropped
     ]
 
-    def without_plot(**given: object) -> None:
-        command(plot=None, **given)  # type: ignore[arg-type]
+    def without(**given: object) -> None:
+        command(**dict.fromkeys(dropped), **given)  # type: ignore[arg-type]
 
-    without_plot.__signature__ = signature.replace(parameters=parameters)  # type: ignore[attr-defined]
-    without_plot.__doc__ = spec.summary
-    return without_plot
+    without.__signature__ = signature.replace(parameters=parameters)  # type: ignore[attr-defined]
+    without.__doc__ = spec.summary
+    return without
 
 
 for _spec in PROBLEMS.values():

@@ -100,16 +100,19 @@ def run_problem(
     force: bool = False,
     time_limit: float | None = DEFAULT_TIME_LIMIT,
     document: Path | None = None,
+    work_precision: Path | None = None,
 ) -> int:
     def body() -> int:
         from mdcalc.output.jsondoc import to_json
 
-        check_outputs(case, plot, save, force, document)
+        check_outputs(case, plot, save, force, document, work_precision)
         from mdcalc.api import solve  # the one path, as from Python
 
-        run = solve(case, spec.name, time_limit=time_limit).run
+        ladders = work_precision is not None
+        run = solve(case, spec.name, time_limit=time_limit, work_precision=ladders).run
         report = run.report
         charts = _charts(run, plot) if plot is not None else []
+        diagrams = _diagrams(run, work_precision) if work_precision is not None else []
         if as_json:
             print(to_json(report))
         else:
@@ -121,6 +124,11 @@ def run_problem(
 
             render(charts, plot, title=report.title, replace=force)
             print_error(f"wrote {plot}")
+        if work_precision is not None and diagrams:
+            from mdcalc.output.plot import render
+
+            render(diagrams, work_precision, title=report.title, replace=force)
+            print_error(f"wrote {work_precision}")
         if save is not None:
             _save(run, save, force)
             print_error(f"wrote {save}")
@@ -273,12 +281,19 @@ def _write_outcome(
 
 
 def check_outputs(
-    case: Path, plot: Path | None, save: Path | None, force: bool, document: Path | None = None
+    case: Path,
+    plot: Path | None,
+    save: Path | None,
+    force: bool,
+    document: Path | None = None,
+    work_precision: Path | None = None,
 ) -> None:
-    """Refuse --plot, --save and --report paths before anything is computed."""
+    """Refuse --plot, --work-precision, --save and --report paths before anything is
+    computed."""
     problems: list[tuple[Path, str]] = []
     outputs = (
         ("--plot", plot, None),
+        ("--work-precision", work_precision, None),
         ("--save", save, (".toml",)),
         ("--report", document, (".html", ".md")),
     )
@@ -305,15 +320,21 @@ def check_outputs(
             problems.append((path, f"{option}: the file exists; use --force to overwrite it"))
         elif path.resolve() == case.resolve():
             problems.append((path, f"{option}: would overwrite the case file itself"))
+    if (
+        plot is not None
+        and work_precision is not None
+        and plot.resolve() == work_precision.resolve()
+    ):
+        problems.append((work_precision, "--work-precision: the same file as --plot; give another"))
     if document is not None and document.suffix.lower() == ".md":
-        problems += _chart_file_problems(case, plot, document, force)
+        problems += _chart_file_problems(case, plot, document, force, work_precision)
     if problems:  # the first file's problems (an error names one file)
         first = problems[0][0]
         raise InputError(first, [Problem(m) for path, m in problems if path == first])
 
 
 def _chart_file_problems(
-    case: Path, plot: Path | None, document: Path, force: bool
+    case: Path, plot: Path | None, document: Path, force: bool, diagram: Path | None = None
 ) -> list[tuple[Path, str]]:
     """A Markdown report's chart PNGs (NAME-1.png, ...) must not overwrite the case
     file or the --plot picture, nor, without --force, a file that is there."""
@@ -322,7 +343,9 @@ def _chart_file_problems(
     from mdcalc.output.document import is_chart_file
 
     problems: list[tuple[Path, str]] = []
-    for other, what in ((case, "the case file"), (plot, "the --plot picture")):
+    others = ((case, "the case file"), (plot, "the --plot picture"),
+              (diagram, "the --work-precision picture"))  # fmt: skip
+    for other, what in others:
         if other is not None and is_chart_file(document, other):
             why = f"--report: its chart pictures ({document.stem}-N.png) would overwrite {what}"
             problems.append((document, f"{why} {other}"))
@@ -332,6 +355,16 @@ def _chart_file_problems(
         if there:
             problems.append((there[0], "--report: file exists; use --force to overwrite it"))
     return problems
+
+
+def _diagrams(run: Any, path: Path) -> list[Any]:
+    from mdcalc.output.precision import charts
+
+    diagrams = charts(run.report)
+    if not diagrams:
+        why = "this scene runs no ODE method" if run.report.status == "ok" else "no answer"
+        print_error(f"{path}: warning: --work-precision: {why}; no file written")
+    return diagrams
 
 
 def _charts(run: Any, plot: Path) -> list[Any]:

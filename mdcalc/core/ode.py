@@ -9,7 +9,9 @@ up to its end time or to the first terminal event, and returns where it stopped.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Sequence
+import threading
+from collections.abc import Callable, Iterator, Sequence
+from contextlib import contextmanager
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
@@ -29,6 +31,43 @@ IMPLICIT = "Radau"
 
 #: What an ODE method imports (see mdcalc.methods.Method.imports).
 IMPORTS = ("scipy.integrate",)
+
+#: scipy's integrators, explicit first: the methods of a work-precision ladder.
+SOLVERS = ("RK23", "RK45", "DOP853", "Radau", "BDF", "LSODA")
+#: Those that take a Jacobian (LSODA switches to its implicit BDF when stiff).
+TAKES_JACOBIAN = ("Radau", "BDF", "LSODA")
+
+
+class _Forced(threading.local):
+    """The integrator every :func:`advance` of this thread uses (None: each run's
+    own choice), and the right-hand-side evaluations counted meanwhile."""
+
+    method: str | None = None
+    evaluations: int = 0
+
+
+_forced = _Forced()
+
+
+def forced() -> str | None:
+    """The integrator :func:`integrator` imposes here (None outside it)."""
+    return _forced.method
+
+
+@contextmanager
+def integrator(method: str) -> Iterator[_Forced]:
+    """Run the body's ODE runs with ``method`` whatever they would pick (a rung of a
+    work-precision ladder), counting their right-hand-side evaluations in the
+    yielded value's ``evaluations`` (those of finite-difference Jacobians
+    included)."""
+    if method not in SOLVERS:
+        raise ValueError(f"unknown integrator {method!r}")
+    saved = _forced.method, _forced.evaluations
+    _forced.method, _forced.evaluations = method, 0
+    try:
+        yield _forced
+    finally:
+        _forced.method, _forced.evaluations = saved
 
 
 def pick_solver(rtol: float, stiff: bool = False) -> str:
@@ -72,6 +111,7 @@ def advance(
     events are recorded (for maxima: a zero of the derivative) without stopping.
     ``dense`` keeps the continuous solution (for tables of the state over time).
     ``jac`` is a constant Jacobian for the implicit solvers of linear systems.
+    Inside :func:`integrator`, that integrator runs instead of ``method``.
     """
     import numpy as np
     from scipy.integrate import solve_ivp as _solve_ivp
@@ -95,6 +135,12 @@ def advance(
         events.append(_event(function, direction, False))
     if t1 <= t0:
         return Segment(t0, np.array(y0, dtype=float), None, 0, [])
+    if _forced.method is not None:
+        method = _forced.method
+    if method not in TAKES_JACOBIAN:
+        jac = None  # (an explicit method would warn that it has no use for it)
+    constant = jac
+    jacobian: Any = (lambda t, y: constant) if method == "LSODA" and jac is not None else jac
     try:
         solution = _solve_ivp(
             checked,
@@ -105,10 +151,11 @@ def advance(
             atol=atol,
             events=events or None,
             dense_output=dense,
-            **({"jac": jac} if jac is not None else {}),
+            **({"jac": jacobian} if jacobian is not None else {}),  # LSODA: a function
         )
     except ValueError as exc:  # scipy giving up on a valid problem (an event's root)
         raise ArithmeticError(f"{method} failed: {exc}") from None
+    _forced.evaluations += solution.nfev
     if solution.status < 0:
         raise ArithmeticError(f"{method} failed at t = {solution.t[-1]:.6g} s: {solution.message}")
     hits: list[tuple[int, float, np.ndarray]] = []

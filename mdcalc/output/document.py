@@ -23,6 +23,7 @@ from urllib.parse import quote
 from mdcalc._version import __version__
 from mdcalc.errors import InputError, Problem
 from mdcalc.input.casefile import dotted, unit_of
+from mdcalc.output import precision
 from mdcalc.output.report import (
     UNITS_KEY,
     Grid,
@@ -55,6 +56,9 @@ class Document:
     version: str = __version__
     #: The heading of the inputs table (a study's: its nominal scene's inputs).
     inputs_title: str = "Inputs"
+    #: How many of the last charts are each work-precision table's (the last tables
+    #: of the report), in order: they stand just above their table.
+    ladder_charts: list[int] = field(default_factory=list)
 
 
 def document_of(run: Any, when: datetime | None = None) -> Document:
@@ -65,7 +69,31 @@ def document_of(run: Any, when: datetime | None = None) -> Document:
     make = getattr(run.module, "charts", None)
     charts = list(make(run.result)) if make is not None and run.result is not None else []
     inputs = inputs_of(run.module.Case, case, getattr(run, "model", None))
-    return Document(run.report, case.path.name, digest, stamp, inputs, charts)
+    ladders = [precision.charts_of(table) for table in precision.ladder_tables(run.report)]
+    charts += [chart for pair in ladders for chart in pair]
+    return Document(
+        run.report, case.path.name, digest, stamp, inputs, charts,
+        ladder_charts=[len(pair) for pair in ladders],
+    )  # fmt: skip
+
+
+def _parts(document: Document) -> list[tuple[Grid | None, list[tuple[int, int]]]]:
+    """The document's body in order: (a grid, None) for a table, (None, figures) for
+    charts as (figure number, index into ``charts``). The scene's charts follow its
+    tables; each work-precision table comes after them, its charts just above it."""
+    grids = _grids(document)
+    ladders = document.ladder_charts
+    main = grids[: len(grids) - len(ladders)]
+    own = len(document.charts) - sum(ladders)
+    parts: list[tuple[Grid | None, list[tuple[int, int]]]] = [(g, []) for g in main]
+    if own:
+        parts.append((None, [(i + 1, i) for i in range(own)]))
+    start = own
+    for grid, count in zip(grids[len(main) :], ladders, strict=True):
+        parts.append((None, [(i + 1, i) for i in range(start, start + count)]))
+        parts.append((grid, []))
+        start += count
+    return parts
 
 
 #: "As written" of a value the case file leaves to its default.
@@ -247,7 +275,21 @@ def to_html(document: Document, svgs: list[str] | None = None, missing: str = ""
         inputs = _inputs_grid(document)
         out.append(_html_table(_headers(inputs), inputs.rows, inputs.right, [], "inputs"))
         out.append("</section>")
-    for grid in _grids(document):
+    for grid, figures in _parts(document):
+        if grid is None:  # the scene's charts, or a work-precision table's above it
+            ladder = figures[0][1] >= len(document.charts) - sum(document.ladder_charts)
+            heading = "" if ladder else "<h2>Charts</h2>"
+            out.append(f'<section class="charts">{heading}')
+            if svgs is None:
+                out.append(f'<div class="note warning"><strong>charts:</strong> {e(missing)}</div>')
+            else:
+                for number, index in figures:
+                    caption = f"<strong>Figure {number}.</strong> {e(document.charts[index].title)}"
+                    out.append(
+                        f"<figure>{_inline_svg(svgs[index])}<figcaption>{caption}</figcaption></figure>"
+                    )
+            out.append("</section>")
+            continue
         out.append(f'<section class="{grid.kind}"><h2>{e(grid.title)}</h2>')
         classes = [
             f"col-{role}{' r' if right else ''}"
@@ -256,15 +298,6 @@ def to_html(document: Document, svgs: list[str] | None = None, missing: str = ""
         out.append(
             _html_table(_headers(grid), grid.rows, grid.right, grid.strong, grid.kind, classes)
         )
-        out.append("</section>")
-    if document.charts:
-        out.append('<section class="charts"><h2>Charts</h2>')
-        if svgs is None:
-            out.append(f'<div class="note warning"><strong>charts:</strong> {e(missing)}</div>')
-        else:
-            for number, (chart, svg) in enumerate(zip(document.charts, svgs, strict=True), 1):
-                caption = f"<strong>Figure {number}.</strong> {e(chart.title)}"
-                out.append(f"<figure>{_inline_svg(svg)}<figcaption>{caption}</figcaption></figure>")
         out.append("</section>")
     out.append(
         f"<footer>mdcalc {e(document.version)} · {e(report.problem)} · "
@@ -343,17 +376,20 @@ def to_markdown(document: Document, images: list[str] | None = None, missing: st
         out += [f"## {_md(document.inputs_title)}", ""]
         inputs = _inputs_grid(document)
         out += _md_table(_headers(inputs), inputs.rows)
-    for grid in _grids(document):
+    for grid, figures in _parts(document):
+        if grid is None:  # the scene's charts, or a work-precision table's above it
+            if figures[0][1] < len(document.charts) - sum(document.ladder_charts):
+                out += ["## Charts", ""]
+            if images is None:
+                out += [f"> **Charts:** {_md(missing)}", ""]
+                continue
+            for number, index in figures:
+                title = document.charts[index].title
+                out += [f"![{_md(title)}]({quote(images[index])})", ""]
+                out += [f"*Figure {number}.* {_md(title)}", ""]
+            continue
         out += [f"## {_md(grid.title)}", ""]
         out += _md_table(_headers(grid), grid.rows, grid.right, grid.strong)
-    if document.charts:
-        out += ["## Charts", ""]
-        if images is None:
-            out += [f"> **Charts:** {_md(missing)}", ""]
-        else:
-            for number, (chart, name) in enumerate(zip(document.charts, images, strict=True), 1):
-                out += [f"![{_md(chart.title)}]({quote(name)})", ""]
-                out += [f"*Figure {number}.* {_md(chart.title)}", ""]
     out.append(
         f"*mdcalc {document.version} · {report.problem} · {_md(document.case_name)} · "
         f"{document.date}*"

@@ -33,6 +33,10 @@ Role = Literal[
     "measured",  # measured points
     "histogram",  # a histogram's steps
     "bars",  # horizontal bars (indices)
+    "explicit",  # an explicit integrator over its tolerances (work-precision)
+    "implicit",  # an implicit integrator over its tolerances
+    "switching",  # an integrator that switches to an implicit method when stiff
+    "single",  # a method without a tolerance (a closed form): one point
 ]
 #: What a reference line is (:data:`MARK_STYLES`).
 MarkRole = Literal[
@@ -67,6 +71,10 @@ SERIES_STYLES: dict[str, dict[str, Any]] = {
                  "zorder": 4},
     "histogram": {"drawstyle": "steps-post", "linewidth": 1.2, "color": "steelblue"},
     "bars": {"color": "steelblue"},
+    "explicit": {"linestyle": "-", "linewidth": 1.3, "marker": "o", "markersize": 4},
+    "implicit": {"linestyle": "--", "linewidth": 1.3, "marker": "s", "markersize": 4},
+    "switching": {"linestyle": "-.", "linewidth": 1.3, "marker": "^", "markersize": 5},
+    "single": {"linestyle": "none", "marker": "*", "markersize": 12, "zorder": 5},
 }  # fmt: skip
 MARK_STYLES: dict[str, dict[str, Any]] = {
     "static": {"linestyle": "-.", "color": "dimgrey", "linewidth": 1.0},

@@ -65,7 +65,9 @@ class Column:
     #: checked by eye against it); "quantity", a quantity string as written, its units
     #: as a person reads them (:func:`pretty_unit`); "unit", a unit (the JSON writes
     #: it in ASCII, :func:`ascii_unit`). The cells themselves keep the data.
-    kind: Literal["", "exact", "quantity", "unit"] = ""
+    #: For a method's numbers: "tolerance" (``1e-5``), "error" (``1.7e-05``, as in a
+    #: Methods table), "seconds" (a run time, ``2.42 ms``: the header carries no unit).
+    kind: Literal["", "exact", "quantity", "unit", "tolerance", "error", "seconds"] = ""
 
 
 #: The key of a report's table of the values a case file wrote with units.
@@ -324,11 +326,14 @@ def _(section: Quantities) -> Grid:
 
 @section_grid.register
 def _(section: Table) -> Grid:
-    first = section.rows[0] if section.rows else []
-    right = [
-        not (i < len(first) and isinstance(first[i], str)) for i in range(len(section.columns))
+    # a column of numbers is right-aligned: its first cell that is not empty says
+    firsts = [next((r[i] for r in section.rows if i < len(r) and r[i] != ""), "")
+              for i in range(len(section.columns))]  # fmt: skip
+    right = [not isinstance(first, str) for first in firsts]
+    header = [
+        f"{c.label} ({c.unit})" if c.unit and c.kind != "seconds" else c.label
+        for c in section.columns
     ]
-    header = [f"{c.label} ({c.unit})" if c.unit else c.label for c in section.columns]
     scales = [0.0] * len(section.columns) if section.rows_differ else _column_scales(section.rows)
     kinds = [c.kind for c in section.columns]
     rows = [[_cell(v, k, kind) for v, k, kind in zip(row, scales, kinds, strict=False)]
@@ -340,6 +345,13 @@ def _(section: Table) -> Grid:
 def _cell(value: Value, scale: float, kind: str) -> str:
     if kind == "exact" and isinstance(value, float):
         return exact_text(value)
+    if isinstance(value, int | float) and not isinstance(value, bool):
+        if kind == "tolerance":
+            return f"{value:.0e}".replace("e-0", "e-")
+        if kind == "error":
+            return format_error(float(value))
+        if kind == "seconds":
+            return format_seconds(float(value))
     if kind == "quantity" and isinstance(value, str):
         return pretty_unit(value)
     return format_value(_rounding_noise_as_zero(value, scale))

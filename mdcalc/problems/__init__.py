@@ -83,6 +83,8 @@ class ProblemSpec:
     summary: str
     #: Does its scene draw curves (``charts``)? Without, its command has no --plot.
     draws: bool = True
+    #: Has it ODE methods (``Method.ladder``)? Then its command has --work-precision.
+    ladders: bool = True
 
     def load(self) -> ProblemModule:
         return cast(ProblemModule, importlib.import_module(f"mdcalc.problems.{self.module}"))
@@ -136,11 +138,13 @@ PROBLEMS: dict[str, ProblemSpec] = {
             "clutch",
             "clutch",
             "Adaptive friction clutch: slip torques, stability bound of the gain C_max.",
+            ladders=False,
         ),
         ProblemSpec(
             "mount",
             "mount",
             "Engine on elastic mounts: resonances, harmonic amplitudes, transmission.",
+            ladders=False,
         ),
     )
 }

@@ -16,6 +16,7 @@ from __future__ import annotations
 
 from collections.abc import Collection
 from dataclasses import dataclass, field, replace
+from functools import partial
 from typing import Any, Literal
 
 from pydantic import Field, model_validator
@@ -353,29 +354,33 @@ def solve(case: Case) -> Result:
             )
         )
     if scene.drag > 0.0:
+        ladder = partial(ode_stop, scene)  # a function of rtol (--work-precision's rungs)
         methods.append(
             Method(
                 "ODE RK45, rtol 1e-3",
-                lambda: ode_stop(scene, 1e-3),
+                partial(ladder, 1e-3),
                 imports=ODE_IMPORTS,
                 accuracy=1,
+                ladder=ladder,
             )
         )
         methods.append(
             Method(
                 "ODE RK45, rtol 1e-6",
-                lambda: ode_stop(scene, 1e-6),
+                partial(ladder, 1e-6),
                 imports=ODE_IMPORTS,
                 accuracy=2,
+                ladder=ladder,
             )
         )
         if not closed_form_exact:
             methods.append(
                 Method(
                     "ODE DOP853, rtol 1e-10",
-                    lambda: ode_stop(scene, 1e-10),
+                    partial(ladder, 1e-10),
                     imports=ODE_IMPORTS,
                     reference=True,
+                    ladder=ladder,
                 )
             )
     table = compare("Methods: stopping distance and time", "stop", QUANTITIES, methods)

@@ -85,9 +85,11 @@ def solve_text(
     case: CaseText,
     expected_problem: str | None = None,
     time_limit: float | None = budget.DEFAULT_SECONDS,
+    work_precision: bool = False,
 ) -> Run:
     """Validate, solve and report a case file already read, keeping the result
-    (:func:`solve_model`: the time limit, and no answer where floats give up)."""
+    (:func:`solve_model`: the time limit, and no answer where floats give up;
+    ``work_precision``: the ladders of the ODE methods too)."""
     path = case.path
     if "study" in case.data:
         raise InputError(
@@ -126,7 +128,7 @@ def solve_text(
         )
         report.case = str(path)
         return Run(report, None, module, case)
-    result, report = solve_model(spec.name, module, model, time_limit)
+    result, report = solve_model(spec.name, module, model, time_limit, work_precision)
     report.case = str(path)
     if case.conversions:
         report.sections.insert(0, units_section(case.conversions))
@@ -134,12 +136,20 @@ def solve_text(
 
 
 def solve_model(
-    problem: str, module: Any, model: Any, time_limit: float | None = budget.DEFAULT_SECONDS
+    problem: str,
+    module: Any,
+    model: Any,
+    time_limit: float | None = budget.DEFAULT_SECONDS,
+    work_precision: bool = False,
 ) -> tuple[Any, Report]:
     """Solve a validated case and build its report, under ``time_limit`` seconds (None:
     no limit) with numpy's and scipy's warnings silenced. A valid scene that overflows,
     runs over the budget or ends in a non-finite number gives (None, a no-answer report
-    saying why): exit 3, never an internal error."""
+    saying why): exit 3, never an internal error. ``work_precision``: each Methods
+    table with ODE methods also runs its work-precision ladder (within the budget),
+    reported as a ``work_precision.<key>`` table after the others."""
+    from mdcalc import methods
+
     result: Any = None
     report: Report | None = None
     why: str | None = None
@@ -148,8 +158,14 @@ def solve_model(
         with budget.limit(time_limit) as limit, warnings.catch_warnings():
             warnings.simplefilter("ignore", RuntimeWarning)  # overflow in scipy's steps...
             try:
-                result = module.solve(model)
+                ladders: list[methods.Ladder] = []
+                if work_precision:
+                    with methods.work_precision() as ladders:
+                        result = module.solve(model)
+                else:
+                    result = module.solve(model)
                 report = module.report(result)
+                report.sections += [methods.ladder_table(ladder) for ladder in ladders]
                 if (place := first_non_finite(report)) is not None:
                     why = _out_of_range(f"a result is not a finite number: {place}")
             except (ArithmeticError, ValueError) as exc:

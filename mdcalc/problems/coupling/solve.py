@@ -41,13 +41,17 @@ STIFF_ZETA = 10.0
 def _ode_methods(run: Callable[[float, bool], float], zeta: float) -> list[Method]:
     stiff = zeta > STIFF_ZETA
 
+    def ladder(rtol: float) -> dict[str, float]:
+        return {"dynamic_factor": run(rtol, stiff)}
+
     def method(rtol: float) -> Method:
         name = pick_solver(rtol, stiff)
         return Method(
             f"ODE {name}, rtol {rtol:.0e}".replace("e-0", "e-"),
-            lambda: {"dynamic_factor": run(rtol, stiff)},
+            lambda: ladder(rtol),
             imports=ODE_IMPORTS,
             note=f"stiff: ζ = {zeta:.3g}" if stiff else "",
+            ladder=ladder,
         )
 
     return [method(rtol) for rtol in ODE_RTOLS]

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import partial
 from typing import Any
 
 from mdcalc.core.ode import IMPORTS as ODE_IMPORTS
@@ -207,6 +208,10 @@ ROPE_QUANTITIES = [
 
 def rope_methods(r: RopeScene, hanging: bool) -> MethodsTable:
     heavy_beta = math.sqrt(r.c / r.m2)
+
+    def hanging_run(rtol: float) -> dict[str, float]:  # (the ladder of --work-precision)
+        return rope_ode(r, True, rtol)
+
     if hanging:
         methods = [
             Method(
@@ -221,9 +226,12 @@ def rope_methods(r: RopeScene, hanging: bool) -> MethodsTable:
                 lambda: hanging_closed_form(r, r.beta),
                 reference=True,
             ),
-            Method("ODE RK45, rtol 1e-3", lambda: rope_ode(r, True, 1e-3), imports=ODE_IMPORTS),
-            Method("ODE RK45, rtol 1e-6", lambda: rope_ode(r, True, 1e-6), imports=ODE_IMPORTS),
-        ]
+            *(
+                Method(f"ODE RK45, rtol {rtol:.0e}".replace("e-0", "e-"),
+                       partial(hanging_run, rtol), imports=ODE_IMPORTS, ladder=hanging_run)
+                for rtol in (1e-3, 1e-6)
+            ),
+        ]  # fmt: skip
         title, key = "Methods: rope, load hanging at start", "rope_hanging"
     else:
         # The reference is the tight ODE run; when it would cover too many rope
@@ -235,6 +243,12 @@ def rope_methods(r: RopeScene, hanging: bool) -> MethodsTable:
         except NotApplicable:
             closed_form_valid = False
         ode_reference = not closed_form_valid or periods_to_integrate(r) <= MAX_ODE_PERIODS
+
+        def ground(rtol: float, periods: float | None = MAX_ODE_PERIODS) -> dict[str, float]:
+            return rope_ode(r, False, rtol, periods)
+
+        # the ladder: as the tight run, up to MAX_ODE_PERIODS where the closed form rules
+        ladder = partial(ground, periods=None if ode_reference else MAX_ODE_PERIODS)
         methods = [
             Method(
                 "lecture (7.98): 2·(G + m2·V/t_p)",
@@ -249,21 +263,24 @@ def rope_methods(r: RopeScene, hanging: bool) -> MethodsTable:
             ),
             Method(
                 "ODE RK45, rtol 1e-3",
-                lambda: rope_ode(r, False, 1e-3),
+                partial(ground, 1e-3),
                 imports=ODE_IMPORTS,
                 accuracy=1,
+                ladder=ladder,
             ),
             Method(
                 "ODE RK45, rtol 1e-6",
-                lambda: rope_ode(r, False, 1e-6),
+                partial(ground, 1e-6),
                 imports=ODE_IMPORTS,
                 accuracy=2,
+                ladder=ladder,
             ),
             Method(
                 "ODE DOP853, rtol 1e-10",
-                lambda: rope_ode(r, False, 1e-10, None if ode_reference else MAX_ODE_PERIODS),
+                partial(ladder, 1e-10),
                 imports=ODE_IMPORTS,
                 reference=ode_reference,
+                ladder=ladder,
             ),
         ]
         title, key = "Methods: rope, load lying on the ground", "rope_ground"

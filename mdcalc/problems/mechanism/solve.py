@@ -8,6 +8,7 @@ from dataclasses import dataclass, field
 from typing import Literal
 
 from mdcalc.core.ode import IMPORTS as ODE_IMPORTS
+from mdcalc.core.ode import forced
 from mdcalc.methods import Method, NotApplicable, compare
 from mdcalc.output.report import MethodQuantity, MethodsTable, Note
 from mdcalc.problems.mechanism.case import TWO_PI, Case
@@ -128,6 +129,9 @@ def solve(case: Case) -> Result:
 
         return run
 
+    def ladder(rtol_: float) -> dict[str, float]:  # --work-precision: any integrator
+        return ode_row(rtol_, forced() or method)()
+
     n = scene.steps
     methods = [
         Method(f"Kovylin (5), n = {n}", kovylin_row(n), note="the user's step"),
@@ -143,6 +147,7 @@ def solve(case: Case) -> Result:
             ode_row(LOOSE_RTOL, method),
             imports=ODE_IMPORTS,
             accuracy=2,
+            ladder=ladder,
         ),
         Method(
             f"{method} rtol {rtol:g}",

@@ -7,6 +7,7 @@ from functools import partial
 from typing import Literal
 
 from mdcalc.core.ode import IMPORTS as ODE_IMPORTS
+from mdcalc.core.ode import forced
 from mdcalc.methods import Method, compare
 from mdcalc.output.report import MethodQuantity, MethodsTable
 from mdcalc.problems.mine_hoist.case import Case
@@ -92,12 +93,17 @@ def solve(case: Case) -> Result:
         ),
     ]
     if case.analysis.ode:
+
+        def ladder(rtol: float) -> dict[str, float]:  # the integrator --work-precision sets
+            return ode_first_swing(scene, dyn, forced() or "DOP853", rtol, ladder=True)
+
         for method, kind, rtol in ODE_ROWS:
             methods.append(
                 Method(
                     f"ODE {method} ({kind}), rtol {rtol:.0e}".replace("e-0", "e-"),
                     partial(ode_first_swing, scene, dyn, method, rtol),
                     imports=ODE_IMPORTS,
+                    ladder=ladder,
                 )
             )
     result.methods = compare(

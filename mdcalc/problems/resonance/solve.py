@@ -140,6 +140,9 @@ def solve(case: Case) -> Result:
 
             return go
 
+        def ladder(rtol: float) -> dict[str, float]:  # --work-precision's rungs
+            return radii(lambda a, q: monodromy_ode(a, q, c, rtol))()
+
         result.methods.append(
             compare(
                 "Methods: Floquet multipliers of one period",
@@ -157,12 +160,14 @@ def solve(case: Case) -> Result:
                         radii(lambda a, q: monodromy_ode(a, q, c, 1e-7)),
                         imports=ODE_IMPORTS,
                         accuracy=2,
+                        ladder=ladder,
                     ),
                     Method(
                         "DOP853 rtol 1e-12",
                         radii(lambda a, q: monodromy_ode(a, q, c, 1e-12)),
                         reference=True,
                         imports=ODE_IMPORTS,
+                        ladder=ladder,
                     ),
                 ],
             )

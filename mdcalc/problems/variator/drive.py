@@ -13,6 +13,7 @@ import numpy as np
 
 from mdcalc.core import periodic
 from mdcalc.core.ode import IMPORTS as ODE_IMPORTS
+from mdcalc.core.ode import forced
 from mdcalc.core.periodic_ode import ode_periodic
 from mdcalc.methods import Method, NotApplicable
 from mdcalc.problems.variator.case import Drive
@@ -212,6 +213,11 @@ def _drive_methods(
     solver = "DOP853"
     # the shooting bundle has 2n + 1 columns of 2n states, then one more period
     columns = 2 * system.size + 2
+
+    def ladder(rtol: float) -> dict[str, float]:  # --work-precision: any integrator
+        run = ode_periodic(system, [w for _, w, _ in observables], rtol, forced() or solver)
+        return values(run.maxima)
+
     for rtol in (1e-6, 1e-9):
         estimate = columns * (cycles * 40.0 + 50.0)
 
@@ -230,6 +236,7 @@ def _drive_methods(
                 ode_run,
                 note="one period from 2n + 1 starts",
                 imports=ODE_IMPORTS,
+                ladder=ladder,
             )
         )
     return methods
