@@ -66,6 +66,9 @@ class Method:
     #: share one function (one ladder); ``ladder_label`` names it where a table has two.
     ladder: Callable[[float], Mapping[str, float]] | None = None
     ladder_label: str = ""
+    #: An ODE method's own rtol, where it is the reference and has a ladder: its
+    #: rungs that close to it measure nothing (:data:`NEAR_REFERENCE`).
+    rtol: float | None = None
 
 
 def timed(run: Callable[[], Mapping[str, float]]) -> tuple[Mapping[str, float], float]:
@@ -161,8 +164,9 @@ def compare(
             ref = reference_values.get(q.key)
             if value is not None and ref is not None and not row.reference:
                 row.rel_errors[q.key] = relative_error(value, ref)
-    if _asked.ladders is not None and any(m.ladder is not None for m in methods):
-        _asked.ladders.append(_ladder(title, key, methods, rows, reference_values))
+    if _asked.jobs is not None and any(m.ladder is not None for m in methods):
+        keys = [q.key for q in quantities]
+        _asked.jobs.append(_Job(title, key, keys, methods, rows, dict(reference_values)))
     return MethodsTable(title, key, quantities, rows)
 
 
@@ -171,15 +175,18 @@ def compare(
 #: The rungs of a ladder: rtol from 1e-3 to 1e-12 (each ODE run scales its atol
 #: with it).
 LADDER_RTOLS = tuple(10.0**-k for k in range(3, 13))
-#: What the ladders of a scene may spend together: LADDER_SECONDS [s] from the
-#: first (without a budget too), and never past the scene's budget; each ladder
-#: takes LADDER_SHARE of what is left of both (a second table's ladder gets the
-#: rest), and its integrators share that equally.
-LADDER_SHARE = 0.6
+#: What the ladders of a scene may spend, after the scene is solved and reported
+#: (so they change none of its numbers): LADDER_SECONDS [s] (without a budget too),
+#: and at most LADDER_SHARE of the scene's budget left; every (ladder, integrator)
+#: pair gets an equal part of what is left when its turn comes.
+LADDER_SHARE = 0.9
 LADDER_SECONDS = 30.0
 #: A rung is not started when the last one's run time times this is more than the
 #: integrator has left: a tighter tolerance costs more.
 GROWTH = 2.0
+#: A rung this close to an ODE reference's own rtol (or tighter) is the reference's
+#: computation again: not measured against it.
+NEAR_REFERENCE = 10.0
 #: How each integrator is drawn and named: its family.
 FAMILIES = {
     "RK23": "explicit",
@@ -216,111 +223,154 @@ class Ladder:
     rungs: list[Rung]
 
 
+@dataclass
+class _Job:
+    """A Methods table's ladder, waiting for the scene to be solved."""
+
+    title: str
+    key: str
+    quantities: list[str]
+    methods: list[Method]
+    rows: list[MethodRow]
+    reference: Mapping[str, float]
+
+
 class _Asked(threading.local):
-    ladders: list[Ladder] | None = None
-    #: When the ladders of this scene must end (perf_counter), set by the first.
-    deadline: float | None = None
+    jobs: list[_Job] | None = None
 
 
 _asked = _Asked()
 
 
 @contextmanager
-def work_precision() -> Iterator[list[Ladder]]:
-    """Every :func:`compare` in the body with an ODE method also runs its ladder:
-    each of scipy's integrators over :data:`LADDER_RTOLS`; the ladders are
-    collected into the yielded list."""
-    saved = _asked.ladders, _asked.deadline
-    collected: list[Ladder] = []
-    _asked.ladders, _asked.deadline = collected, None
+def work_precision() -> Iterator[list[_Job]]:
+    """Every :func:`compare` in the body with an ODE method notes its ladder in the
+    yielded list, for :func:`run_ladders` once the scene is solved."""
+    saved = _asked.jobs
+    jobs: list[_Job] = []
+    _asked.jobs = jobs
     try:
-        yield collected
+        yield jobs
     finally:
-        _asked.ladders, _asked.deadline = saved
+        _asked.jobs = saved
 
 
-def _ladder(
-    title: str,
-    key: str,
-    methods: list[Method],
-    rows: list[MethodRow],
-    reference: Mapping[str, float],
-) -> Ladder:
+def run_ladders(jobs: list[_Job]) -> list[Ladder]:
+    """Each job's ladder: its ODE computations with each of scipy's integrators over
+    :data:`LADDER_RTOLS`, within what the budget leaves (:data:`LADDER_SECONDS`)."""
     from mdcalc.core.ode import SOLVERS
 
-    rungs = [
-        Rung(
-            row.method,
-            "single",
-            None,
-            max(e for e in row.rel_errors.values() if e is not None),
-            row.seconds,
-            None,
-        )  # fmt: skip
-        for method, row in zip(methods, rows, strict=True)
+    plans = []
+    for job in jobs:
+        runs: dict[int, Method] = {}  # one ladder per ODE computation
+        for method in job.methods:
+            if method.ladder is not None:
+                runs.setdefault(id(method.ladder), method)
+        plans.append((job, list(runs.values())))
+    pairs = sum(len(computations) for _, computations in plans) * len(SOLVERS)
+    deadline = time.perf_counter() + min(LADDER_SECONDS, budget.remaining() * LADDER_SHARE)
+    ladders = []
+    for job, computations in plans:
+        rungs = _single_points(job)
+        near = _near_reference(job)
+        for method in computations:
+            assert method.ladder is not None
+            for solver in SOLVERS:
+                left = max(deadline - time.perf_counter(), 0.0) / pairs
+                pairs -= 1
+                label = f"{method.ladder_label}: {solver}" if method.ladder_label else solver
+                rungs += _rungs(label, solver, method.ladder, job, left, near)
+        named = [row.method for row in job.rows if row.reference]
+        ladders.append(Ladder(job.title, job.key, named[0] if named else "", rungs))
+    return ladders
+
+
+def _single_points(job: _Job) -> list[Rung]:
+    """The methods without a tolerance (closed forms, lecture formulas) that ran."""
+    return [
+        Rung(row.method, "single", None, max(errors), row.seconds, None)
+        for method, row in zip(job.methods, job.rows, strict=True)
         if method.ladder is None
         and row.seconds is not None
-        and any(e is not None for e in row.rel_errors.values())
+        and (errors := [e for e in row.rel_errors.values() if e is not None])
     ]
-    runs: dict[int, Method] = {}  # one ladder per ODE computation
-    for method in methods:
-        if method.ladder is not None:
-            runs.setdefault(id(method.ladder), method)
-    named = [row.method for row in rows if row.reference]
-    now = time.perf_counter()
-    if _asked.deadline is None:
-        _asked.deadline = now + LADDER_SECONDS
-    mine = min(budget.remaining(), _asked.deadline - now) * LADDER_SHARE
-    with budget.allot(mine):
-        deadline = time.perf_counter() + max(mine, 0.0)
-        for method in runs.values():
-            assert method.ladder is not None
-            for index, solver in enumerate(SOLVERS):
-                left = (deadline - time.perf_counter()) / (len(SOLVERS) - index) / len(runs)
-                label = f"{method.ladder_label}: {solver}" if method.ladder_label else solver
-                with budget.allot(left):
-                    rungs += _rungs(label, solver, method.ladder, reference)
-    return Ladder(title, key, named[0] if named else "", rungs)
+
+
+def _near_reference(job: _Job) -> float:
+    """The rtol at and below which a rung repeats an ODE reference (0: none)."""
+    for method, row in zip(job.methods, job.rows, strict=True):
+        if row.reference and method.ladder is not None and method.rtol is not None:
+            return method.rtol * NEAR_REFERENCE
+    return 0.0
 
 
 def _rungs(
     label: str,
     solver: str,
     run: Callable[[float], Mapping[str, float]],
-    reference: Mapping[str, float],
+    job: _Job,
+    seconds: float,
+    near: float,
 ) -> list[Rung]:
-    """``run`` with ``solver`` at each tolerance, loose to tight, until the time
-    allotted ends; the rungs after are said to be skipped."""
+    """``run`` with ``solver`` at each tolerance, loose to tight, within ``seconds``;
+    the rungs after it ran out are said to be skipped."""
+    family = FAMILIES[solver]
+    rungs: list[Rung] = []
+    stop = ""
+    try:
+        with budget.allot(seconds):
+            last = 0.0
+            for rtol in LADDER_RTOLS:
+                if not stop and rtol <= near:
+                    stop = "not measured: the reference's own tolerance"
+                if not stop and last * GROWTH > budget.remaining():
+                    stop = "skipped: would run over the time budget"
+                if stop:
+                    rungs.append(Rung(label, family, rtol, None, None, None, stop))
+                    continue
+                start = time.perf_counter()
+                rung = _rung(label, solver, run, job, rtol)
+                last = time.perf_counter() - start if rung.seconds is None else rung.seconds
+                rungs.append(rung)
+                if rung.status == "over the time budget":
+                    stop = "skipped: a looser tolerance ran over the time budget"
+    except budget.OverBudget:  # the alarm, between two rungs
+        stop = "skipped: a looser tolerance ran over the time budget"
+    done = {r.rtol for r in rungs}
+    rungs += [Rung(label, family, rtol, None, None, None, stop or "skipped")
+              for rtol in LADDER_RTOLS if rtol not in done]  # fmt: skip
+    return rungs
+
+
+def _rung(
+    label: str, solver: str, run: Callable[[float], Mapping[str, float]], job: _Job, rtol: float
+) -> Rung:
     from mdcalc.core.ode import integrator
 
     family = FAMILIES[solver]
-    rungs: list[Rung] = []
-    last = 0.0
-    stop = ""
-    for rtol in LADDER_RTOLS:
-        if not stop and last * GROWTH > budget.remaining():
-            stop = "skipped: would run over the time budget"
-        if stop:
-            rungs.append(Rung(label, family, rtol, None, None, None, stop))
-            continue
-        counts: list[int] = []  # the evaluations after each call: the first's count
-        try:
-            with integrator(solver) as counter:
-                values, seconds = timed(partial(_counted, run, rtol, counter, counts))
-            last = seconds
-        except budget.OverBudget:
-            rungs.append(Rung(label, family, rtol, None, None, None, "over the time budget"))
-            stop = "skipped: a looser tolerance ran over the time budget"
-            continue
-        except (NotApplicable, ArithmeticError) as reason:
-            rungs.append(Rung(label, family, rtol, None, None, None, _why_not(reason)))
-            continue
-        errors = [relative_error(v, reference[k]) for k, v in values.items() if k in reference]
-        if not errors or not all(math.isfinite(e) for e in errors):
-            rungs.append(Rung(label, family, rtol, None, seconds, counts[0], "failed: no value"))
-            continue
-        rungs.append(Rung(label, family, rtol, max(errors), seconds, counts[0]))
-    return rungs
+    counts: list[int] = []  # the evaluations after each call: the first's count
+    try:
+        with integrator(solver) as counter:
+            values, seconds = timed(partial(_counted, run, rtol, counter, counts))
+    except budget.OverBudget:
+        return Rung(label, family, rtol, None, None, None, "over the time budget")
+    except (NotApplicable, ArithmeticError) as reason:
+        return Rung(label, family, rtol, None, None, None, _why_not(reason))
+    missing = [k for k in job.quantities if k in job.reference and k not in values]
+    errors = [relative_error(values[k], job.reference[k])
+              for k in job.quantities if k in job.reference and k in values]  # fmt: skip
+    if missing or not errors or not all(math.isfinite(e) for e in errors):
+        why = f"failed: no value for {', '.join(missing)}" if missing else "failed: no value"
+        return Rung(label, family, rtol, None, seconds, counts[0], why)
+    return Rung(label, family, rtol, max(errors), seconds, counts[0])
+
+
+def _counted(
+    run: Callable[[float], Mapping[str, float]], rtol: float, counter: Any, counts: list[int]
+) -> Mapping[str, float]:
+    values = run(rtol)
+    counts.append(counter.evaluations)
+    return values
 
 
 #: A work-precision table's key: ``work_precision.<its Methods table's key>``.
@@ -353,14 +403,6 @@ def ladder_table(ladder: Ladder) -> Table:
         list(LADDER_COLUMNS),
         rows,
     )
-
-
-def _counted(
-    run: Callable[[float], Mapping[str, float]], rtol: float, counter: Any, counts: list[int]
-) -> Mapping[str, float]:
-    values = run(rtol)
-    counts.append(counter.evaluations)
-    return values
 
 
 def _import(method: Method) -> None:

@@ -86,7 +86,7 @@ def test_the_alarm_does_not_raise_inside_a_finalizer(monkeypatch):
         del slow  # its __del__ runs past the deadline and the grace
         assert time.perf_counter() - start >= 0.3
         spin(5.0)
-    assert time.perf_counter() - start < 0.7
+    assert time.perf_counter() - start < 2.0  # (not the 5 s spin: it raised after)
     assert swallowed == []
 
 
@@ -112,7 +112,7 @@ def test_the_alarm_does_not_raise_inside_a_garbage_collector_callback(monkeypatc
             spin(5.0)
     finally:
         gc.callbacks.remove(slow_callback)
-    assert time.perf_counter() - start < 0.7
+    assert time.perf_counter() - start < 2.0  # (not the 5 s spin: it raised after)
     assert swallowed == []
 
 
@@ -137,7 +137,7 @@ def test_the_alarm_does_not_raise_inside_a_weakref_callback_the_collector_runs(m
         gc.collect()
         assert watch() is None and time.perf_counter() - start >= 0.3
         spin(5.0)
-    assert time.perf_counter() - start < 0.7
+    assert time.perf_counter() - start < 2.0  # (not the 5 s spin: it raised after)
     assert swallowed == []
 
 

@@ -146,8 +146,17 @@ CaseArgument = Annotated[
         autocompletion=complete_case,
     ),
 ]
+
+
+def _force_option(options: str) -> Any:
+    return Annotated[bool, typer.Option("--force", help=f"Let {options} overwrite a file.")]
+
+
 ForceOption = Annotated[
-    bool, typer.Option("--force", help="Let --plot, --save and --report overwrite a file.")
+    bool,
+    typer.Option(
+        "--force", help="Let --plot, --work-precision, --save and --report overwrite a file."
+    ),
 ]
 ReportOption = Annotated[
     Path | None,
@@ -169,11 +178,6 @@ WorkPrecisionOption = Annotated[
         "(needs mdcalc[plot]); the tables go into the report and the JSON.",
         metavar="FILE",
     ),
-]
-
-
-NoPlotForceOption = Annotated[
-    bool, typer.Option("--force", help="Let --save and --report overwrite a file.")
 ]
 
 
@@ -217,8 +221,11 @@ def _make_problem_command(spec: ProblemSpec) -> Callable[..., None]:
     import inspect
 
     signature = inspect.signature(command)
+    pictures = [o for o, n in (("--plot", "plot"), ("--work-precision", "work_precision"))
+                if n not in dropped]  # fmt: skip
+    force = _force_option(", ".join([*pictures, "--save"]) + " and --report")
     parameters = [
-        p.replace(annotation=NoPlotForceOption) if p.name == "force" and not spec.draws else p
+        p.replace(annotation=force) if p.name == "force" else p
         for p in signature.parameters.values()
         if p.name not in dropped
     ]

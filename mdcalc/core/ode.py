@@ -58,8 +58,8 @@ def forced() -> str | None:
 def integrator(method: str) -> Iterator[_Forced]:
     """Run the body's ODE runs with ``method`` whatever they would pick (a rung of a
     work-precision ladder), counting their right-hand-side evaluations in the
-    yielded value's ``evaluations`` (those of finite-difference Jacobians
-    included)."""
+    yielded value's ``evaluations``: every call, those of a finite-difference
+    Jacobian included (scipy's ``nfev`` leaves Radau's and BDF's out)."""
     if method not in SOLVERS:
         raise ValueError(f"unknown integrator {method!r}")
     saved = _forced.method, _forced.evaluations
@@ -121,11 +121,16 @@ def advance(
     y0 = np.asarray(y0, dtype=float)
     if not (np.all(np.isfinite(y0)) and math.isfinite(t0)):
         raise ArithmeticError(f"the state at t = {t0:.6g} s is not a finite number")
+    if _forced.method is not None:
+        method = _forced.method
+    if method not in TAKES_JACOBIAN:
+        jac = None  # (an explicit method would warn that it has no use for it)
     if jac is not None and not np.all(np.isfinite(jac)):
         raise ArithmeticError("the Jacobian is not a finite number")
 
     def checked(t: float, y: np.ndarray) -> Any:  # the budget, at every evaluation
         budget.check()
+        _forced.evaluations += 1  # (scipy's nfev leaves out Radau's and BDF's Jacobians)
         return rhs(t, y)
 
     events: list[Any] = []
@@ -135,10 +140,6 @@ def advance(
         events.append(_event(function, direction, False))
     if t1 <= t0:
         return Segment(t0, np.array(y0, dtype=float), None, 0, [])
-    if _forced.method is not None:
-        method = _forced.method
-    if method not in TAKES_JACOBIAN:
-        jac = None  # (an explicit method would warn that it has no use for it)
     constant = jac
     jacobian: Any = (lambda t, y: constant) if method == "LSODA" and jac is not None else jac
     try:
@@ -155,7 +156,6 @@ def advance(
         )
     except ValueError as exc:  # scipy giving up on a valid problem (an event's root)
         raise ArithmeticError(f"{method} failed: {exc}") from None
-    _forced.evaluations += solution.nfev
     if solution.status < 0:
         raise ArithmeticError(f"{method} failed at t = {solution.t[-1]:.6g} s: {solution.message}")
     hits: list[tuple[int, float, np.ndarray]] = []
@@ -209,7 +209,7 @@ def oscillator_peak(
     scale = max(abs(f) for _, f in points) or 1.0
     atol = np.array([scale, scale * beta]) * rtol * 1e-3
     method = pick_solver(rtol, stiff)
-    jac = np.array([[0.0, 1.0], [-beta * beta, -2.0 * zeta * beta]]) if stiff else None
+    jac = np.array([[0.0, 1.0], [-beta * beta, -2.0 * zeta * beta]])  # (implicit methods')
     y = np.zeros(2)
     best = (0.0, points[0][0])
     for (t0, f0), (t1, f1) in zip(points, points[1:], strict=False):
@@ -260,7 +260,7 @@ def linear_oscillator_maxima(
     spring moments of a chain, seed 002 (6)): the largest value of each component
     of x over 0 ≤ t ≤ ``end`` and its time, found by events on x' = 0, and the
     number of right-hand-side evaluations. x and f should be scaled to order one.
-    Implicit methods get the constant Jacobian. Raises :class:`TooManySteps` past
+    The implicit methods get the constant Jacobian. Raises :class:`TooManySteps` past
     ``max_evaluations``."""
     import numpy as np
 
@@ -289,7 +289,7 @@ def linear_oscillator_maxima(
         atol=atol,
         method=method,
         watch=watch,
-        jac=jacobian if method in ("Radau", "BDF") else None,
+        jac=jacobian,  # (taken by the implicit methods alone)
     )
     peaks, times = [0.0] * n, [0.0] * n  # x(0) = 0
     for k in range(n):

@@ -381,6 +381,7 @@ def solve(case: Case) -> Result:
                     imports=ODE_IMPORTS,
                     reference=True,
                     ladder=ladder,
+                    rtol=1e-10,
                 )
             )
     table = compare("Methods: stopping distance and time", "stop", QUANTITIES, methods)

@@ -158,14 +158,15 @@ def solve_model(
         with budget.limit(time_limit) as limit, warnings.catch_warnings():
             warnings.simplefilter("ignore", RuntimeWarning)  # overflow in scipy's steps...
             try:
-                ladders: list[methods.Ladder] = []
                 if work_precision:
-                    with methods.work_precision() as ladders:
+                    with methods.work_precision() as jobs:
                         result = module.solve(model)
                 else:
                     result = module.solve(model)
                 report = module.report(result)
-                report.sections += [methods.ladder_table(ladder) for ladder in ladders]
+                if work_precision:  # after the scene: its numbers do not depend on them
+                    ladders = methods.run_ladders(jobs)
+                    report.sections += [methods.ladder_table(ladder) for ladder in ladders]
                 if (place := first_non_finite(report)) is not None:
                     why = _out_of_range(f"a result is not a finite number: {place}")
             except (ArithmeticError, ValueError) as exc:

@@ -115,6 +115,8 @@ def solve(case: Case) -> Result:
             reference_run,
             reference=True,
             imports=ODE_IMPORTS,
+            ladder=ladder,
+            rtol=REFERENCE_RTOL,
             note="with dense output for the tables",
         ),
     ]

@@ -281,6 +281,7 @@ def rope_methods(r: RopeScene, hanging: bool) -> MethodsTable:
                 imports=ODE_IMPORTS,
                 reference=ode_reference,
                 ladder=ladder,
+                rtol=1e-10,
             ),
         ]
         title, key = "Methods: rope, load lying on the ground", "rope_ground"

@@ -155,6 +155,8 @@ def solve(case: Case) -> Result:
             reference=True,
             note=f"{ref.evaluations} evaluations",
             imports=ODE_IMPORTS,
+            ladder=ladder,
+            rtol=rtol,
         ),
     ]
     quantities = [

@@ -168,6 +168,7 @@ def solve(case: Case) -> Result:
                         reference=True,
                         imports=ODE_IMPORTS,
                         ladder=ladder,
+                        rtol=1e-12,
                     ),
                 ],
             )
