@@ -233,12 +233,13 @@ def test_the_command_line_writes_the_picture_json_and_report(cli, tmp_path, monk
     keys = [s.get("key") for s in document["sections"]]
     assert keys[-1] == "work_precision.step"
     html = page.read_text(encoding="utf-8")
-    # the two charts inline, just above their table
+    # the two charts inline under the table's heading, just above it
     at = html.index("<h2>Work–precision: ")
-    scene = html.index("<figcaption><strong>Figure 1.</strong>")  # the scene's chart
-    assert html.count("<svg", scene, at) == 2
-    assert "<figcaption><strong>Figure 2.</strong> Work–precision: " in html[scene:at]
-    assert "<figcaption><strong>Figure 3.</strong> The same against" in html[scene:at]
+    table = html.index("<table", at)
+    assert html.count("<svg", at, table) == 2
+    assert "<figcaption><strong>Figure 2.</strong> Work–precision: " in html[at:table]
+    assert "<figcaption><strong>Figure 3.</strong> The same against" in html[at:table]
+    assert html.count("<svg", 0, at) == 1  # the scene's own chart, in its Charts
 
 
 def test_bad_use_is_exit_2_and_a_scene_without_ode_rows_says_so(cli, tmp_path):

@@ -78,9 +78,10 @@ def document_of(run: Any, when: datetime | None = None) -> Document:
 
 
 def _parts(document: Document) -> list[tuple[Grid | None, list[tuple[int, int]]]]:
-    """The document's body in order: (a grid, None) for a table, (None, figures) for
-    charts as (figure number, index into ``charts``). The scene's charts follow its
-    tables; each work-precision table comes after them, its charts just above it."""
+    """The document's body in order: (a grid, []) for a table, (None, figures) for the
+    scene's charts as (figure number, index into ``charts``), after its tables; then
+    (a grid, figures) for each work-precision table: under its heading, its charts
+    just above it."""
     grids = _grids(document)
     ladders = document.ladder_charts
     main = grids[: len(grids) - len(ladders)]
@@ -90,8 +91,7 @@ def _parts(document: Document) -> list[tuple[Grid | None, list[tuple[int, int]]]
         parts.append((None, [(i + 1, i) for i in range(own)]))
     start = own
     for grid, count in zip(grids[len(main) :], ladders, strict=True):
-        parts.append((None, [(i + 1, i) for i in range(start, start + count)]))
-        parts.append((grid, []))
+        parts.append((grid, [(i + 1, i) for i in range(start, start + count)]))
         start += count
     return parts
 
@@ -276,21 +276,20 @@ def to_html(document: Document, svgs: list[str] | None = None, missing: str = ""
         out.append(_html_table(_headers(inputs), inputs.rows, inputs.right, [], "inputs"))
         out.append("</section>")
     for grid, figures in _parts(document):
-        if grid is None:  # the scene's charts, or a work-precision table's above it
-            ladder = figures[0][1] >= len(document.charts) - sum(document.ladder_charts)
-            heading = "" if ladder else "<h2>Charts</h2>"
-            out.append(f'<section class="charts">{heading}')
-            if svgs is None:
-                out.append(f'<div class="note warning"><strong>charts:</strong> {e(missing)}</div>')
-            else:
-                for number, index in figures:
-                    caption = f"<strong>Figure {number}.</strong> {e(document.charts[index].title)}"
-                    out.append(
-                        f"<figure>{_inline_svg(svgs[index])}<figcaption>{caption}</figcaption></figure>"
-                    )
+        # the scene's charts; a table; a work-precision table, its charts above it
+        kind, heading = ("charts", "Charts") if grid is None else (grid.kind, grid.title)
+        out.append(f'<section class="{kind}"><h2>{e(heading)}</h2>')
+        if figures and svgs is None:
+            out.append(f'<div class="note warning"><strong>charts:</strong> {e(missing)}</div>')
+        elif figures and svgs is not None:
+            for number, index in figures:
+                caption = f"<strong>Figure {number}.</strong> {e(document.charts[index].title)}"
+                out.append(
+                    f"<figure>{_inline_svg(svgs[index])}<figcaption>{caption}</figcaption></figure>"
+                )
+        if grid is None:
             out.append("</section>")
             continue
-        out.append(f'<section class="{grid.kind}"><h2>{e(grid.title)}</h2>')
         classes = [
             f"col-{role}{' r' if right else ''}"
             for role, right in zip(grid.roles, grid.right, strict=True)
@@ -377,19 +376,17 @@ def to_markdown(document: Document, images: list[str] | None = None, missing: st
         inputs = _inputs_grid(document)
         out += _md_table(_headers(inputs), inputs.rows)
     for grid, figures in _parts(document):
-        if grid is None:  # the scene's charts, or a work-precision table's above it
-            if figures[0][1] < len(document.charts) - sum(document.ladder_charts):
-                out += ["## Charts", ""]
-            if images is None:
-                out += [f"> **Charts:** {_md(missing)}", ""]
-                continue
+        # (a work-precision table's charts stand under its heading, above it)
+        out += [f"## {_md('Charts' if grid is None else grid.title)}", ""]
+        if figures and images is None:
+            out += [f"> **Charts:** {_md(missing)}", ""]
+        elif figures and images is not None:
             for number, index in figures:
                 title = document.charts[index].title
                 out += [f"![{_md(title)}]({quote(images[index])})", ""]
                 out += [f"*Figure {number}.* {_md(title)}", ""]
-            continue
-        out += [f"## {_md(grid.title)}", ""]
-        out += _md_table(_headers(grid), grid.rows, grid.right, grid.strong)
+        if grid is not None:
+            out += _md_table(_headers(grid), grid.rows, grid.right, grid.strong)
     out.append(
         f"*mdcalc {document.version} · {report.problem} · {_md(document.case_name)} · "
         f"{document.date}*"
