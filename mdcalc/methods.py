@@ -66,8 +66,9 @@ class Method:
     #: share one function (one ladder); ``ladder_label`` names it where a table has two.
     ladder: Callable[[float], Mapping[str, float]] | None = None
     ladder_label: str = ""
-    #: An ODE method's own rtol, where it is the reference and has a ladder: its
-    #: rungs that close to it measure nothing (:data:`NEAR_REFERENCE`).
+    #: An ODE method's own rtol (with ``ladder``): where it is the reference, or
+    #: stands in for one, the rungs that close to it measure nothing
+    #: (:data:`NEAR_REFERENCE`).
     rtol: float | None = None
 
 
@@ -297,10 +298,12 @@ def _single_points(job: _Job) -> list[Rung]:
 
 
 def _near_reference(job: _Job) -> float:
-    """The rtol at and below which a rung repeats an ODE reference (0: none)."""
+    """The rtol at and below which a rung repeats an ODE reference (0: none): the
+    reference row's, a stand-in's too (a row that took the place of a reference
+    over the budget). (1 + 1e-9: 1e-11·10 is 9.99…e-11 in floating point.)"""
     for method, row in zip(job.methods, job.rows, strict=True):
         if row.reference and method.ladder is not None and method.rtol is not None:
-            return method.rtol * NEAR_REFERENCE
+            return method.rtol * NEAR_REFERENCE * (1.0 + 1e-9)
     return 0.0
 
 
@@ -354,7 +357,7 @@ def _rung(
             values, seconds = timed(partial(_counted, run, rtol, counter, counts))
     except budget.OverBudget:
         return Rung(label, family, rtol, None, None, None, "over the time budget")
-    except (NotApplicable, ArithmeticError) as reason:
+    except (NotApplicable, ArithmeticError, ValueError) as reason:  # (LinAlgError too)
         return Rung(label, family, rtol, None, None, None, _why_not(reason))
     missing = [k for k in job.quantities if k in job.reference and k not in values]
     errors = [relative_error(values[k], job.reference[k])

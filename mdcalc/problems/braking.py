@@ -362,6 +362,7 @@ def solve(case: Case) -> Result:
                 imports=ODE_IMPORTS,
                 accuracy=1,
                 ladder=ladder,
+                rtol=1e-3,
             )
         )
         methods.append(
@@ -371,6 +372,7 @@ def solve(case: Case) -> Result:
                 imports=ODE_IMPORTS,
                 accuracy=2,
                 ladder=ladder,
+                rtol=1e-6,
             )
         )
         if not closed_form_exact:

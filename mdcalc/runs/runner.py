@@ -164,11 +164,10 @@ def solve_model(
                 else:
                     result = module.solve(model)
                 report = module.report(result)
-                if work_precision:  # after the scene: its numbers do not depend on them
-                    ladders = methods.run_ladders(jobs)
-                    report.sections += [methods.ladder_table(ladder) for ladder in ladders]
                 if (place := first_non_finite(report)) is not None:
                     why = _out_of_range(f"a result is not a finite number: {place}")
+                elif work_precision:  # after the scene: its numbers do not depend on them
+                    _add_ladders(report, jobs)
             except (ArithmeticError, ValueError) as exc:
                 if not out_of_float_range(exc):
                     raise
@@ -190,6 +189,20 @@ def solve_model(
     report.cut = list(limit.cut)
     report.notes.extend(Note("warning", f"time budget: {what}") for what in limit.cut)
     return result, report
+
+
+def _add_ladders(report: Report, jobs: list[Any]) -> None:
+    """The work-precision tables of a reported scene. Whatever stops them (the
+    deadline between two rungs, a failure outside a rung) leaves the scene's report
+    as it is, with a warning."""
+    from mdcalc import methods
+
+    try:
+        ladders = methods.run_ladders(jobs)
+        report.sections += [methods.ladder_table(ladder) for ladder in ladders]
+    except (budget.OverBudget, ArithmeticError, ValueError) as exc:
+        why = f"{type(exc).__name__}: {exc}" if str(exc) else "over the time budget"
+        report.notes.append(Note("warning", f"work-precision ladders not finished ({why})"))
 
 
 def out_of_float_range(exc: BaseException) -> bool:

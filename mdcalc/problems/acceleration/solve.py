@@ -102,6 +102,7 @@ def solve(case: Case) -> Result:
             imports=ODE_IMPORTS,
             accuracy=1,
             ladder=ladder,
+            rtol=1e-3,
         ),
         Method(
             "ODE RK45, rtol 1e-6",
@@ -109,6 +110,7 @@ def solve(case: Case) -> Result:
             imports=ODE_IMPORTS,
             accuracy=2,
             ladder=ladder,
+            rtol=1e-6,
         ),
         Method(
             "ODE DOP853, rtol 1e-11",
@@ -123,6 +125,10 @@ def solve(case: Case) -> Result:
     result.methods = compare(
         "Methods: time and distance to the target speed", "target", QUANTITIES, methods
     )
+    if "run" not in reference:  # the reference ran over its budget: a looser ODE row
+        stand_in = next(row.method for row in result.methods.rows if row.reference)
+        rtol = {m.name: m.rtol for m in methods}[stand_in]  # stands in (a table's run)
+        reference["run"] = ode_run(scene, stints, rtol or REFERENCE_RTOL, dense=True)
     result.run = reference["run"]
     try:
         result.lecture = lecture_run(scene, *coefficients)

@@ -267,6 +267,7 @@ def rope_methods(r: RopeScene, hanging: bool) -> MethodsTable:
                 imports=ODE_IMPORTS,
                 accuracy=1,
                 ladder=ladder,
+                rtol=1e-3,
             ),
             Method(
                 "ODE RK45, rtol 1e-6",
@@ -274,6 +275,7 @@ def rope_methods(r: RopeScene, hanging: bool) -> MethodsTable:
                 imports=ODE_IMPORTS,
                 accuracy=2,
                 ladder=ladder,
+                rtol=1e-6,
             ),
             Method(
                 "ODE DOP853, rtol 1e-10",

@@ -148,6 +148,7 @@ def solve(case: Case) -> Result:
             imports=ODE_IMPORTS,
             accuracy=2,
             ladder=ladder,
+            rtol=LOOSE_RTOL,
         ),
         Method(
             f"{method} rtol {rtol:g}",
