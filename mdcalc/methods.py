@@ -30,7 +30,6 @@ from typing import Any
 
 from mdcalc.core import budget
 from mdcalc.output.report import (
-    Column,
     MethodQuantity,
     MethodRow,
     MethodsTable,
@@ -376,24 +375,14 @@ def _counted(
     return values
 
 
-#: A work-precision table's key: ``work_precision.<its Methods table's key>``.
-LADDER_KEY = "work_precision"
-LADDER_COLUMNS = [
-    Column("method"),
-    Column("family"),
-    Column("rtol", kind="tolerance"),
-    Column("error", kind="error"),
-    Column("run time", "s", kind="seconds"),
-    Column("evaluations"),
-    Column("status"),
-]
-
-
 def ladder_table(ladder: Ladder) -> Table:
     """A ladder as a report's table (JSON: ``kind`` "table", ``key``
-    ``work_precision.<key>``, one row a rung in :data:`LADDER_COLUMNS` order; ""
+    ``work_precision.<key>``, one row a rung in the order of
+    :data:`mdcalc.output.precision.LADDER_COLUMNS`; ""
     where a rung has no number: a closed form's rtol and evaluations, a run that
     did not finish)."""
+    from mdcalc.output.precision import LADDER_COLUMNS, LADDER_KEY  # (the charts' reader)
+
     what = ladder.title.removeprefix("Methods: ")
     rows: list[list[Value]] = [
         [r.method, r.family, *["" if v is None else v for v in

@@ -7,13 +7,27 @@ matplotlib."""
 
 from __future__ import annotations
 
-from mdcalc.output.plot import Chart, Mark, Role, Series
-from mdcalc.output.report import Report, Table, Value
+import sys
 
+from mdcalc.output.plot import Chart, Mark, Role, Series
+from mdcalc.output.report import Column, Report, Table, Value
+
+#: A work-precision table's key, ``work_precision.<its Methods table's key>``, and
+#: its columns (filled by :func:`mdcalc.methods.ladder_table`, read here).
+LADDER_KEY = "work_precision"
+LADDER_COLUMNS = [
+    Column("method"),
+    Column("family"),
+    Column("rtol", kind="tolerance"),
+    Column("error", kind="error"),
+    Column("run time", "s", kind="seconds"),
+    Column("evaluations"),
+    Column("status"),
+]
 #: An error of exactly 0 (a closed form that is the reference's formula) is drawn
 #: here, below double precision's epsilon, on a log axis.
 FLOOR = 1e-17
-EPSILON = 2.220446049250313e-16
+EPSILON = sys.float_info.epsilon
 ROLES: dict[str, Role] = {
     "explicit": "explicit",
     "implicit": "implicit",
@@ -24,7 +38,7 @@ ROLES: dict[str, Role] = {
 
 def ladder_tables(report: Report) -> list[Table]:
     return [
-        s for s in report.sections if isinstance(s, Table) and s.key.startswith("work_precision.")
+        s for s in report.sections if isinstance(s, Table) and s.key.startswith(f"{LADDER_KEY}.")
     ]
 
 
