@@ -313,6 +313,7 @@ RATE_SCENES = [
     ("mechanism", "studies/mechanism_inertia.toml", "inertia.value"),
     ("mechanism tables", "mechanism/tabulated_press.toml", "motion.start_speed"),
     ("acceleration", "acceleration/lecture.toml", "vehicle.mass"),
+    ("acceleration adhesion", "acceleration/high_power.toml", "vehicle.mass"),
 ]
 
 #: Sizes of a kernel scene's two studies where 10⁶ samples would take minutes.

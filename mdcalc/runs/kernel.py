@@ -130,8 +130,11 @@ def lost_block(block: Any, error: BaseException) -> LostBlock:
 #: Rows of the first two calls of a kernel on the process pool, timed: the first
 #: pays the one-off imports, the second says what a row costs.
 PROBE = 512
-#: Seconds of kernel work a piece sent to the pool holds, about.
-PIECE_SECONDS = 0.25
+#: Pieces a job of the pool gets of the samples, where the blocks allow: as few as
+#: balance the load, since every call of an ODE kernel pays its steps' Python work
+#: once for all its rows (the adhesion-limited car: 2950 rows/s in one process in
+#: pieces of 512, 13 800 in pieces of 16 384).
+PIECES_PER_JOB = 4
 
 
 def kernel_parts(run: KernelChunk, blocks: Sequence[Any], mapper: Any) -> tuple[Iterable[Any], str]:
@@ -139,8 +142,9 @@ def kernel_parts(run: KernelChunk, blocks: Sequence[Any], mapper: Any) -> tuple[
     this process). On the process pool two probes of :data:`PROBE` rows run here
     and time a row: a kernel whose block would take longer than HEAVY_BLOCK_SECONDS
     (a modal solution and its maxima in time, an ODE reference) has its blocks cut
-    into pieces of about PIECE_SECONDS (at least PROBE rows; four per job where the
-    samples allow), run by the pool's processes and joined again per block; a
+    into pieces, run by the pool's processes and joined again per block: a piece
+    holds a job's share of the samples (PIECES_PER_JOB a job), at least PROBE rows,
+    at most a block (a kernel whose arrays outgrow the cache tiles it); a
     lighter one runs here; a piece lost for good (its process died past the retries)
     marks its rows in the block's answer (:data:`LOST`). On a cluster every block
     goes to the workers, retried where one dies; a block lost for good comes back as
@@ -163,11 +167,8 @@ def kernel_parts(run: KernelChunk, blocks: Sequence[Any], mapper: Any) -> tuple[
         first = _joined([*probes, run(tail)], [PROBE, PROBE, len(tail)])
         return itertools.chain([first], map(run, blocks[1:])), ""
     rest = [head[2 * PROBE :], *blocks[1:]]
-    # a piece of at least PROBE rows: a kernel's cost a call (a step of an ODE over
-    # the block) is shared by its rows
-    size = min(BLOCK, max(PROBE, int(PIECE_SECONDS / max(per_row, 1e-12))))
-    size = max(PROBE, min(size, -(-(total - 2 * PROBE) // (4 * mapper.jobs))))
-    pieces = [[b[i : i + size] for i in range(0, len(b), size)] for b in rest]
+    size = piece_size(total - 2 * PROBE, mapper.jobs)
+    pieces = [_equal_pieces(b, size) for b in rest]
     answers = iter(mapper(run, [p for group in pieces for p in group], on_error=lost_block))
 
     def joined() -> Iterable[Any]:
@@ -177,8 +178,30 @@ def kernel_parts(run: KernelChunk, blocks: Sequence[Any], mapper: Any) -> tuple[
             if index == 0:
                 parts, sizes = [*probes, *parts], [PROBE, PROBE, *sizes]
             yield _joined(parts, sizes)
+        # Run the pool's stream to its end, which shuts the pool down and joins it:
+        # a stream left at its last item kept the pool's manager thread alive until
+        # the interpreter's exit, where Python 3.11's exit hook raced it to a closed
+        # pipe ("OSError: [Errno 9] Bad file descriptor", in 2 runs of 10).
+        for _ in answers:
+            pass
 
     return joined(), mapper.description
+
+
+def piece_size(rows: int, jobs: int) -> int:
+    """Rows of a piece of a heavy kernel's blocks on a pool of ``jobs``: large, since
+    a kernel's cost a call (a step of an ODE over the block) is shared by its rows,
+    yet PIECES_PER_JOB a job so that the jobs end together; at least PROBE rows, at
+    most a block."""
+    return max(PROBE, min(BLOCK, -(-rows // (PIECES_PER_JOB * max(jobs, 1)))))
+
+
+def _equal_pieces(block: Any, size: int) -> list[Any]:
+    """``block`` in the fewest pieces of at most ``size`` rows, of equal size (to a
+    row)."""
+    count = max(1, -(-len(block) // size))
+    ends = [len(block) * i // count for i in range(count + 1)]
+    return [block[a:b] for a, b in zip(ends, ends[1:], strict=False)]
 
 
 #: In a block's answer, the rows of a piece lost for good (the rest of the block

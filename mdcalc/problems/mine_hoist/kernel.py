@@ -8,7 +8,7 @@ from collections.abc import Collection
 from typing import Any
 
 from mdcalc.core.chain import supremum
-from mdcalc.input.model import kernel_answer, with_values
+from mdcalc.input.model import in_tiles, kernel_answer, with_values
 from mdcalc.problems.mine_hoist.case import Case
 from mdcalc.problems.mine_hoist.modal import block_dynamics
 from mdcalc.problems.mine_hoist.scene import reduce_rope, seed_formula_1, stiffnesses_at
@@ -33,6 +33,9 @@ SWEEP_KEYS = {
 
 #: The results that need the maxima over the whole horizon (many samples per scene).
 HORIZON_KEYS = {"mu12_horizon", "mu23_horizon"}
+#: Rows a call computes at most (a larger block runs in tiles): the maxima's arrays
+#: stay in the cache.
+TILE_ROWS = 8192
 
 
 def sweep(
@@ -52,6 +55,9 @@ def sweep(
         return None
     if case.rope is None and any(key.startswith("rope.") for key in grid):
         return None
+    tiles = in_tiles(sweep, case, grid, wanted, TILE_ROWS)
+    if tiles is not None:
+        return tiles
     arrays = with_values(case, {key: np.asarray(v, dtype=float) for key, v in grid.items()})
     size = max([np.size(v) for v in grid.values()] + [1])
 
