@@ -6,6 +6,7 @@ from __future__ import annotations
 import copy
 import math
 import tomllib
+from itertools import product
 
 import numpy as np
 
@@ -96,15 +97,17 @@ def test_a_mechanism_row_counts_its_evaluations_as_the_single_reference(monkeypa
 def test_a_block_of_tables_gives_every_row_its_single_tables_numbers_bit_for_bit():
     # PeriodicRows and two_way_rows (a row's own values) against Periodic and
     # _two_way of that row alone: the same cell, the same interpolation, at angles
-    # over several turns (negative ones too) and speeds inside and beyond the table.
+    # over several turns (negative ones too) and speeds inside and beyond the table;
+    # two speeds (one cell) or three; the torque table locating its angles with the
+    # other table's memory of the last ones (the same angles), read in either order.
     from mdcalc.problems.mechanism.scene import Periodic, PeriodicRows, _two_way, two_way_rows
 
     rng = np.random.default_rng(11)
-    for closing in (True, False):
+    for closing, speeds in product((True, False), ([0.0, 80.0, 200.0], [0.0, 200.0])):
         angles = sorted(rng.uniform(0.0, 2.0 * math.pi, 7).tolist())
         if closing:
             angles = [0.0, *angles, 2.0 * math.pi]
-        rows, speeds = 5, [0.0, 80.0, 200.0]
+        rows = 5
         values = rng.uniform(-500.0, 500.0, (rows, len(angles), len(speeds)))
         if closing:
             values[:, -1] = values[:, 0]
@@ -118,10 +121,16 @@ def test_a_block_of_tables_gives_every_row_its_single_tables_numbers_bit_for_bit
         two[1][1] = float(values[0, 1, 1])
         values[:, 1, 1] = values[0, 1, 1]
         block = PeriodicRows(angles, one_way)
-        torque, slope = two_way_rows(angles, speeds, two)
+        torque, slope = two_way_rows(angles, speeds, two, share=block)
         index = np.arange(rows)
         got = block(index, phi)
         got_torque, got_slope = torque(index, phi, omega), slope(index, phi, omega)
+        alone, _ = two_way_rows(angles, speeds, two)  # no memory shared
+        elsewhere = phi + 1.0  # other angles after φ: located anew
+        assert np.array_equal(block(index, phi), got)
+        assert np.array_equal(torque(index, elsewhere, omega), alone(index, elsewhere, omega))
+        assert np.array_equal(block(index, phi), got)
+        assert np.array_equal(torque(index, phi.copy(), omega), got_torque)
         for r in range(rows):
             one = Periodic(angles, values[r, :, 0].tolist())
             m, c = _two_way(angles, speeds, values[r].tolist())
@@ -129,6 +138,12 @@ def test_a_block_of_tables_gives_every_row_its_single_tables_numbers_bit_for_bit
                 assert got[k, r] == one(float(phi[k, r]))
                 assert got_torque[k, r] == m(float(phi[k, r]), float(omega[k, r]))
                 assert got_slope[k, r] == c(float(phi[k, r]), float(omega[k, r]))
+    shifted = PeriodicRows([a + 0.1 for a in angles[:-1]], one_way[:-1])
+    shifted.share(block)  # other angles: nothing shared
+    assert shifted._last is not block._last
+    assert np.array_equal(
+        shifted(index, phi), PeriodicRows(shifted.angles[:-1].tolist(), one_way[:-1])(index, phi)
+    )
 
 
 def test_a_study_of_a_tabulated_press_draws_the_tables_values(tmp_path, cli):

@@ -111,22 +111,25 @@ class _Formulas:
         self.torque_table: Any = None
         self.slope_table: Any = None
         self.inertia_table: Any = None
+        if i.values is not None:
+            angles = i.table_angles()
+            assert angles is not None
+            self.inertia_table = PeriodicRows(angles, list(i.values))
         if t.values is not None:
             angles = t.table_angles()
             assert angles is not None
             if t.speeds is None:
                 table = PeriodicRows(angles, list(t.values))
+                if self.inertia_table is not None:
+                    table.share(self.inertia_table)
                 self.torque_table = lambda rows, phi, omega: table(rows, phi)
             else:
                 self.torque_table, self.slope_table = two_way_rows(
                     angles,
                     list(t.speeds),
                     [list(row) for row in t.values],  # type: ignore[arg-type]
+                    self.inertia_table,
                 )
-        if i.values is not None:
-            angles = i.table_angles()
-            assert angles is not None
-            self.inertia_table = PeriodicRows(angles, list(i.values))
         self.everyone = np.arange(size)
 
     def scene(self, rows: Any, base: Any) -> Scene:

@@ -189,16 +189,30 @@ class PeriodicRows:
                 else:
                     base[k, s] = value
         self.base = base if isinstance(values[0], list) else base[:, 0]
+        #: The angles last located (the array itself) and their cells and weights.
+        self._last: list[Any] = [None, None]
 
     def locate(self, phi: Any) -> tuple[Any, Any]:
-        """The cell k of each angle and the weight w of its right end."""
+        """The cell k of each angle and the weight w of its right end. The last
+        angles asked and their cells are kept: M and I of one right-hand side are
+        read at the same angles, from tables that may share theirs (:meth:`share`)."""
         import numpy as np
 
+        if phi is self._last[0]:
+            return self._last[1]
         x = self.start + (phi - self.start) % TWO_PI
         last = len(self.angles) - 2
-        k = np.clip(np.searchsorted(self.angles, x, side="right") - 1, 0, last)
+        k = np.minimum(np.maximum(np.searchsorted(self.angles, x, side="right") - 1, 0), last)
         a0, a1 = self.angles[k], self.angles[k + 1]
-        return k, (x - a0) / (a1 - a0)
+        found = k, (x - a0) / (a1 - a0)
+        self._last[0], self._last[1] = phi, found
+        return found
+
+    def share(self, other: PeriodicRows) -> None:
+        """Locate angles with ``other``'s memory of the last ones, where the two
+        tables have the same angles (a cell and weight are the angles' alone)."""
+        if self.start == other.start and list(self.angles) == list(other.angles):
+            self._last = other._last
 
     def value(self, rows: Any, k: Any, column: Any = None) -> Any:
         """The table's entry at angle k (and speed ``column``) of each row."""
@@ -218,19 +232,29 @@ class PeriodicRows:
 
 
 def two_way_rows(
-    angles: list[float], speeds: list[float], values: list[list[Any]]
+    angles: list[float],
+    speeds: list[float],
+    values: list[list[Any]],
+    share: PeriodicRows | None = None,
 ) -> tuple[Callable[[Any, Any, Any], Any], Callable[[Any, Any, Any], Any]]:
     """:func:`_two_way` over a block (the values a list of rows, one per angle, an
     entry a study draws an array over the block): M and ∂M/∂ω of the rows (m,) at φ
-    and ω ((m,) or (k, m))."""
+    and ω ((m,) or (k, m)); its angles located with ``share``'s where they are the
+    same (:meth:`PeriodicRows.share`)."""
     import numpy as np
 
     table = PeriodicRows(angles, values)
+    if share is not None:
+        table.share(share)
     grid = np.array(speeds)
+    last = len(speeds) - 2
 
     def columns(rows: Any, phi: Any, omega: Any) -> tuple[Any, Any, Any]:
         """The cell j of ω, and M of the columns j and j + 1 at φ."""
-        j = np.clip(np.searchsorted(grid, omega, side="right") - 1, 0, len(speeds) - 2)
+        if last == 0:
+            j: Any = 0  # two speeds: one cell, extrapolated beyond them
+        else:
+            j = np.minimum(np.maximum(np.searchsorted(grid, omega, side="right") - 1, 0), last)
         k, w = table.locate(phi)
         ends = []
         for column in (j, j + 1):
