@@ -143,7 +143,7 @@ def _combine(weights: Any, K: Any) -> Any:
     total = np.zeros(K.shape[1:])
     for w, k in zip(weights.tolist(), K, strict=False):
         if w != 0.0:
-            total = total + w * k
+            total += w * k
     return total
 
 
@@ -241,7 +241,10 @@ def dop853_block(
         rejected[rows] = ~accept
         failed[rows] |= bad
         took = np.flatnonzero(accept)
-        if took.size:
+        if took.size == rows.size:  # every row took its step: no copies
+            at = rows
+            step = Step(at, tr, t_new, yr, y_new, fr, f_new, K, rhs)
+        elif took.size:
             at = rows[took]
             step = Step(
                 at,
@@ -254,6 +257,7 @@ def dop853_block(
                 K[:, took],
                 rhs,
             )
+        if took.size:
             if on_step is not None:
                 on_step(step)
             if stop is not None:
