@@ -72,3 +72,49 @@ def test_never_more_processes_than_items():
     assert jobs_for(2, 1000) == 2
     assert jobs_for(0, 1000) == default_jobs(1000) == min(os.cpu_count() or 1, 1000)
     assert jobs_for(5, 0) == 1
+
+
+#: A reader of a pool's stream that stops after its first result: the stream is
+#: closed while the workers send results of a few MB (a kernel piece's columns).
+STOPS_EARLY = """
+import numpy as np
+from mdcalc.runs.pool import pool_map
+
+def big(i):
+    return np.full(400_000, float(i))
+
+for out in pool_map(big, list(range(12)), 2):
+    break
+del out
+print("end", flush=True)
+"""
+
+
+def test_a_stream_closed_early_ends_the_command(tmp_path):
+    # Closing the stream kills the workers; one killed while it sent a result left
+    # half of it in the pipe, and the pool's manager thread waited for the rest for
+    # ever: the interpreter's exit joins that thread, and the command hung after its
+    # output (2 to 3 runs in 6 before the fix). Each run must end within 30 s.
+    import subprocess
+    import sys
+
+    script = tmp_path / "stops_early.py"
+    script.write_text(STOPS_EARLY, encoding="utf-8")
+    for _ in range(3):
+        done = subprocess.run(
+            [sys.executable, str(script)], capture_output=True, text=True, timeout=30
+        )
+        assert done.returncode == 0 and done.stdout == "end\n", done.stderr[-2000:]
+        assert "Exception ignored" not in done.stderr, done.stderr[-2000:]
+
+
+def test_killing_a_pool_closes_this_process_end_of_its_result_pipe():
+    # the mechanism of the fix above, without its race: after _kill the manager
+    # thread's read of a half-sent result meets the end of the pipe
+    from mdcalc.runs.pool import _kill, _new_pool
+
+    pool = _new_pool(2)
+    writer = pool._result_queue._writer
+    assert pool.submit(abs, -3).result(timeout=30) == 3
+    _kill(pool)
+    assert writer.closed

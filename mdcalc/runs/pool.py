@@ -306,9 +306,17 @@ def _worker_start(parent: int) -> None:
 
 
 def _kill(pool: ProcessPoolExecutor) -> None:
-    """Stop the workers now: a case may have a minute of budget left."""
+    """Stop the workers now: a case may have a minute of budget left. A worker killed
+    while it sent a result leaves half of it in the pipe, and the pool's manager
+    thread would wait for the rest for ever (the interpreter's exit joins that
+    thread: the command would hang after its output); this process's copy of the
+    pipe's writing end is closed, so that the read ends when the workers are gone."""
     processes = getattr(pool, "_processes", None) or {}
+    writer = getattr(getattr(pool, "_result_queue", None), "_writer", None)  # (shutdown drops it)
     for process in list(processes.values()):
         with suppress(Exception):
             process.kill()
     pool.shutdown(wait=False, cancel_futures=True)
+    if writer is not None:
+        with suppress(Exception):
+            writer.close()
