@@ -187,15 +187,6 @@ GROWTH = 2.0
 #: A rung this close to an ODE reference's own rtol (or tighter) is the reference's
 #: computation again: not measured against it.
 NEAR_REFERENCE = 10.0
-#: How each integrator is drawn and named: its family.
-FAMILIES = {
-    "RK23": "explicit",
-    "RK45": "explicit",
-    "DOP853": "explicit",
-    "Radau": "implicit",
-    "BDF": "implicit",
-    "LSODA": "switching",
-}
 
 
 @dataclass
@@ -316,6 +307,8 @@ def _rungs(
 ) -> list[Rung]:
     """``run`` with ``solver`` at each tolerance, loose to tight, within ``seconds``;
     the rungs after it ran out are said to be skipped."""
+    from mdcalc.core.ode import FAMILIES
+
     family = FAMILIES[solver]
     rungs: list[Rung] = []
     stop = ""
@@ -347,7 +340,7 @@ def _rungs(
 def _rung(
     label: str, solver: str, run: Callable[[float], Mapping[str, float]], job: _Job, rtol: float
 ) -> Rung:
-    from mdcalc.core.ode import integrator
+    from mdcalc.core.ode import FAMILIES, integrator
 
     family = FAMILIES[solver]
     counts: list[int] = []  # the evaluations after each call: the first's count

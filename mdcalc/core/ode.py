@@ -32,8 +32,17 @@ IMPLICIT = "Radau"
 #: What an ODE method imports (see mdcalc.methods.Method.imports).
 IMPORTS = ("scipy.integrate",)
 
-#: scipy's integrators, explicit first: the methods of a work-precision ladder.
-SOLVERS = ("RK23", "RK45", "DOP853", "Radau", "BDF", "LSODA")
+#: scipy's integrators, explicit first, and their families (how a work-precision
+#: diagram draws them): the methods of a work-precision ladder.
+FAMILIES = {
+    "RK23": "explicit",
+    "RK45": "explicit",
+    "DOP853": "explicit",
+    "Radau": "implicit",
+    "BDF": "implicit",
+    "LSODA": "switching",  # to its implicit BDF when stiff
+}
+SOLVERS = tuple(FAMILIES)
 #: Those that take a Jacobian (LSODA switches to its implicit BDF when stiff).
 TAKES_JACOBIAN = ("Radau", "BDF", "LSODA")
 
