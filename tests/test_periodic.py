@@ -758,3 +758,36 @@ def test_a_row_that_is_not_finite_fails_alone_and_leaves_the_block_solved() -> N
     for i in (0, 3):
         alone = exact_periodic(systems[i])
         assert values[i] == maximum_of(alone, np.array([1.0, 0, 0, 0]), alone.fastest).value
+
+
+@pytest.mark.parametrize("tau0", [0.7318, 0.0, 1.9999, 1.0 + 2.0 / 512])
+def test_refinement_reaches_a_peaks_time_and_a_flat_peaks_value(tau0: float) -> None:
+    # the refinement stops a candidate once its slope is 1e-12 of its bracket's:
+    # a simple peak's time is then exact to about 1e-12 of a sample step; a flat one
+    # (1 - (1 - cos x)², fourth order at x = 0) has its value to the rounding
+    period = 2.0
+    omega = 2.0 * math.pi / period
+
+    def simple(tau: np.ndarray) -> np.ndarray:
+        return np.cos(omega * (tau - tau0)) + 0.2 * np.cos(2 * omega * (tau - tau0))
+
+    def simple_rate(tau: np.ndarray) -> np.ndarray:
+        x = omega * (tau - tau0)
+        return -omega * np.sin(x) - 0.4 * omega * np.sin(2 * x)
+
+    value, time = periodic_maximum(simple, simple_rate, period, 256)
+    assert value == pytest.approx(1.2, rel=1e-15)
+    offset = (time - tau0 + 0.5 * period) % period - 0.5 * period
+    assert abs(offset) <= 1e-12 * period / 256
+
+    def flat(tau: np.ndarray) -> np.ndarray:
+        return 1.0 - (1.0 - np.cos(omega * (tau - tau0))) ** 2
+
+    def flat_rate(tau: np.ndarray) -> np.ndarray:
+        x = omega * (tau - tau0)
+        return -2.0 * omega * (1.0 - np.cos(x)) * np.sin(x)
+
+    value, time = periodic_maximum(flat, flat_rate, period, 256)
+    assert value == pytest.approx(1.0, rel=1e-15)
+    # its value is flat to the rounding within about ε^¼ of its time
+    assert abs((time - tau0 + 0.5 * period) % period - 0.5 * period) <= 1e-4 * period
