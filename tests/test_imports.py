@@ -251,3 +251,29 @@ def test_a_scene_skips_pydantic_plugin_discovery_but_not_the_loader():
     )
     done = subprocess.run([sys.executable, "-c", forwarded], capture_output=True, text=True)
     assert done.stdout.split() == ["[]", "pydantic", "1.0"], done.stderr
+
+
+def test_a_latin_hypercube_study_in_the_fields_units_loads_neither_pint_nor_scipy_stats(
+    tmp_path,
+):
+    # the shipped braking study: LHS, a normal mass "1500 kg" ± "75 kg" (kg is the
+    # field's unit); its Sobol design (SALib, scipy) is left out here
+    text = (CASES / "studies" / "braking_adhesion.toml").read_text(encoding="utf-8")
+    case = tmp_path / "study.toml"
+    probe = PROBE.replace('{{"scipy", "matplotlib", "pint"}}', '{{"scipy.stats", "pint"}}')
+
+    def heavy(study: str) -> str:
+        case.write_text(study, encoding="utf-8")
+        done = subprocess.run(
+            [sys.executable, "-c", probe.format(args=["study", str(case), "--json"])],
+            capture_output=True,
+            text=True,
+            timeout=120,
+        )
+        return done.stderr.strip().splitlines()[-1]
+
+    study = text.replace("sensitivity = true", "sensitivity = false")
+    study = study.replace("samples = 100_000", "samples = 2000")
+    assert heavy(study) == "HEAVY []"
+    # a string in another unit still goes to pint
+    assert heavy(study.replace('sd = "75 kg"', 'sd = "0.075 t"')) == "HEAVY ['pint']"

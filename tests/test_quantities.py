@@ -137,17 +137,17 @@ def test_the_registry_is_built_once():
     assert registry() is registry()
 
 
-def test_every_numeric_field_unit_is_understood():
-    # Written once for all problems: the unit in each numeric field's description
-    # must be one pint reads (else strings are refused there: listed, on purpose).
+#: Units of numeric fields that are no fixed unit (strings are refused there).
+NOT_FIXED = {"N·m/radⁿ", "kgf·m/radⁿ", "unit of value"}
+
+
+def numeric_field_units() -> set[str]:
+    """The unit in the description of every numeric field of every problem."""
     from pydantic import BaseModel
 
     from mdcalc.input.casefile import _unit, takes_numbers
-    from mdcalc.input.quantities import field_unit
     from mdcalc.problems import PROBLEMS
 
-    not_fixed = {"N·m/radⁿ", "kgf·m/radⁿ", "unit of value"}
-    ureg = registry()
     seen: set[str] = set()
 
     def visit(model: type[BaseModel]) -> None:
@@ -155,10 +155,7 @@ def test_every_numeric_field_unit_is_understood():
             for arg in _models_in(info.annotation):
                 visit(arg)
             if takes_numbers(info.annotation):
-                unit = _unit(info)
-                seen.add(unit)
-                if unit not in not_fixed:
-                    ureg.Unit(field_unit(unit))  # raises if pint cannot read it
+                seen.add(_unit(info))
 
     def _models_in(annotation):
         if isinstance(annotation, type) and issubclass(annotation, BaseModel):
@@ -168,7 +165,49 @@ def test_every_numeric_field_unit_is_understood():
 
     for spec in PROBLEMS.values():
         visit(spec.load().Case)
+    return seen
+
+
+def test_every_numeric_field_unit_is_understood():
+    # Written once for all problems: the unit in each numeric field's description
+    # must be one pint reads (else strings are refused there: listed, on purpose).
+    from mdcalc.input.quantities import field_unit
+
+    ureg = registry()
+    seen = numeric_field_units()
+    for unit in seen - NOT_FIXED:
+        ureg.Unit(field_unit(unit))  # raises if pint cannot read it
     assert {"N·m/rad", "rpm", "kg·m²", "km/h"} <= seen
+
+
+NUMBERS = ["1500", "-2.5e3", ".5", "7.", "+3E-2", "0", "1e-300", "123456789.123456789", "-0.0"]
+
+
+def test_a_number_in_the_fields_own_unit_is_pints_value_bit_for_bit():
+    # convert reads "1500 kg" for a kg field without pint; pint alone must agree
+    from mdcalc.input.quantities import by_pint, field_unit
+
+    units = numeric_field_units() - NOT_FIXED - {""}
+    assert len(units) > 20
+    for unit in sorted(units):
+        for number in NUMBERS:
+            for text in (f"{number} {field_unit(unit)}", f"  {number}{field_unit(unit)} "):
+                fast, slow = convert(text, unit), by_pint(text, unit)
+                assert math.copysign(1.0, fast) == math.copysign(1.0, slow), (text, unit)
+                assert fast == slow and type(fast) is float, (text, unit, fast, slow)
+
+
+@pytest.mark.parametrize(
+    ("text", "unit"),
+    [
+        ("5 N*m/radⁿ", "N·m/radⁿ"),  # no fixed unit: refused, as pint refuses it
+        ("5 unit of value", "unit of value"),
+        ("1e999 kg", "kg"),  # not finite: pint's message
+    ],
+)
+def test_a_string_the_shortcut_must_not_take_gets_pints_answer(text, unit):
+    with pytest.raises(QuantityError):
+        convert(text, unit)
 
 
 # ---------------------------------------------------------------------- the CLI

@@ -663,3 +663,20 @@ def test_samples_that_break_a_cross_field_rule_are_refused_alone_and_the_rest_ve
         np.testing.assert_allclose(
             fast.evaluated.values[key], slow.evaluated.values[key], rtol=1e-9, equal_nan=True
         )
+
+
+@pytest.mark.parametrize(("samples", "dims", "seed"), [(1, 1, 0), (7, 3, 5), (4096, 5, 2026)])
+def test_the_latin_hypercube_is_scipys_bit_for_bit(samples, dims, seed):
+    # drawn in numpy so that a study need not import scipy.stats (0.5 s)
+    import warnings
+
+    from scipy.stats import qmc
+
+    from mdcalc.runs.study.sample import latin_hypercube
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", UserWarning)
+        expected = qmc.LatinHypercube(dims, rng=seed).random(samples)
+    got = latin_hypercube(samples, dims, seed)
+    assert got.shape == expected.shape
+    assert np.array_equal(got, expected)
