@@ -345,3 +345,40 @@ def test_lecture_note_names_the_lectures_origin_only_for_its_coefficient(cli, wr
     code, document = run_json(cli, write_case, data)
     assert code == 0
     assert not any("206" in n["text"] for n in document["notes"])
+
+
+def test_a_table_drawn_row_by_row_is_each_rows_own_table_to_the_bit() -> None:
+    # the kernel's torque table over a block (a study drawing table values, and the
+    # rev limit) against each row's table on the float path: interpolation at and
+    # between the knots and beyond both ends, the peak torque and the peak power
+    # (a plateau: the first of equals), to the last bit
+    import numpy as np
+
+    from mdcalc.problems.acceleration.engine import EngineCurve
+
+    rng = np.random.default_rng(31)
+    speeds = (100.0, 200.0, 300.0, 450.0, 600.0, 720.0)
+    rows = 64
+    drawn = 560.0 * (1.0 + 0.05 * rng.uniform(-1.0, 1.0, rows))
+    plateau = np.where(np.arange(rows) % 4 == 0, 640.0, 650.0 * (1.0 + 0.01 * rng.random(rows)))
+    torques = (400.0, drawn, 640.0, plateau, 600.0, 520.0)
+    block = EngineCurve(speeds, torques)
+
+    def row(b: int) -> EngineCurve:
+        return EngineCurve(speeds, tuple(float(np.broadcast_to(m, (rows,))[b]) for m in torques))
+
+    omega = np.concatenate(
+        [np.array(speeds)[:, None] * np.ones((1, rows)), rng.uniform(50.0, 800.0, (40, rows))]
+    )
+    got = block.torque(omega)
+    for b in range(0, rows, 7):
+        single = row(b)
+        assert [single.torque(float(w)) for w in omega[:, b]] == got[:, b].tolist()
+    limits = rng.uniform(500.0, 720.0, rows)
+    for limit in (700.0, limits):
+        peak, at_peak = block.peak(limit)
+        power = block.max_power_speed(limit)
+        for b in range(rows):
+            one = float(np.broadcast_to(limit, (rows,))[b])
+            assert row(b).peak(one) == (peak[b], at_peak[b])
+            assert row(b).max_power_speed(one) == power[b]

@@ -83,21 +83,29 @@ class EngineCurve:
         import numpy as np
 
         size, count = max(np.size(m) for m in self.torques), len(self.torques)
-        # row by row (B, K), flat: a row's entry j at row·K + j
-        table = np.stack(
-            [np.broadcast_to(np.asarray(m, dtype=float), (size,)) for m in self.torques]
-        )
-        flat = table.T.ravel()
+        torques = [np.broadcast_to(np.asarray(m, dtype=float), (size,)) for m in self.torques]
+        # row by row, flat: a row's M[j] at row·(K - 1) + j, and M[j + 1] - M[j] beside
+        # it (the numbers the formula takes, one subtraction each, once a call)
+        lower_of = np.empty((size, count - 1))
+        rise_of = np.empty((size, count - 1))
+        for j in range(count - 1):
+            lower_of[:, j] = torques[j]
+            rise_of[:, j] = torques[j + 1] - torques[j]
         x = np.asarray(omega, dtype=float)
-        x = np.broadcast_to(x, np.broadcast_shapes(x.shape, (size,)))
-        start = np.broadcast_to(np.arange(0, size * count, count), x.shape)
         speeds = np.asarray(self.speeds)
-        k = np.clip(np.searchsorted(speeds, x, side="right"), 1, count - 1)
-        w = (x - speeds[k - 1]) / (speeds[k] - speeds[k - 1])
-        lower, upper = flat[start + (k - 1)], flat[start + k]
-        inside = lower + w * (upper - lower)
-        end = np.where(x >= speeds[-1], flat[start + (count - 1)], inside)
-        return np.where(x <= speeds[0], flat[start], end)
+        # the cell k - 1 of each speed, and the same numbers as speeds[k] - speeds[k - 1],
+        # by np.take (fancy indexing cost 3x as much); the cell and weight on the
+        # speeds' own shape, which the rows' may broadcast ((C, 1) against (B,))
+        cell = np.asarray(np.searchsorted(speeds, x, side="right"))
+        cell -= 1
+        np.minimum(cell, count - 2, out=cell)
+        np.maximum(cell, 0, out=cell)
+        w = (x - np.take(speeds, cell)) / np.take(np.diff(speeds), cell)
+        cell = cell + np.arange(0, size * (count - 1), count - 1)  # (rows on the last axis)
+        inside = np.take(lower_of.ravel(), cell) + w * np.take(rise_of.ravel(), cell)
+        # held at its ends: each row's first and last torque (rows on the last axis)
+        end = np.where(x >= speeds[-1], torques[-1], inside)
+        return np.where(x <= speeds[0], torques[0], end)
 
     def _candidates(self, limit: float) -> list[float]:
         """Table speeds up to ``limit``, ``limit`` itself and a fine grid: where a
@@ -114,15 +122,21 @@ class EngineCurve:
 
         limit = np.asarray(limit, dtype=float)
         size = max([np.size(limit)] + [np.size(m) for m in self.torques])
-        limit = np.broadcast_to(limit, (size,))
+        # one limit for every row (the rev limit not drawn): one column of candidates,
+        # the same numbers as each row's, which the rows' torques broadcast
+        width = 1 if limit.ndim == 0 else size
+        limit = np.broadcast_to(limit, (width,))
         grid = self.low + (limit[None, :] - self.low) * np.arange(513)[:, None] / 512
-        speeds = np.broadcast_to(np.asarray(self.speeds)[:, None], (len(self.speeds), size))
+        speeds = np.broadcast_to(np.asarray(self.speeds)[:, None], (len(self.speeds), width))
         speeds = np.where(speeds <= limit[None, :], speeds, np.nan)  # past the limit: none
-        candidates = np.sort(np.concatenate([speeds, grid], axis=0), axis=0)  # (C, rows)
+        candidates = np.concatenate([speeds, grid], axis=0)  # (C, rows), unsorted
         score = self._table_rows(candidates)
         score = score * candidates if power else score
-        best = np.argmax(np.where(np.isnan(candidates), -np.inf, score), axis=0)
-        return candidates[best, np.arange(size)]
+        score = np.where(np.isnan(candidates), -np.inf, score)
+        # the first of equals in rising order is the least speed of the best score
+        # (no sort of the candidates: it took a third of this)
+        best = np.max(score, axis=0)
+        return np.min(np.where(score == best, candidates, np.inf), axis=0)
 
     def peak(self, limit: float) -> tuple[float, float]:
         """(ω, M) at the maximum torque on [low, limit]."""
