@@ -347,14 +347,17 @@ def test_lecture_note_names_the_lectures_origin_only_for_its_coefficient(cli, wr
     assert not any("206" in n["text"] for n in document["notes"])
 
 
-def test_a_table_drawn_row_by_row_is_each_rows_own_table_to_the_bit() -> None:
+def test_a_table_drawn_row_by_row_is_each_rows_own_table_to_the_bit(monkeypatch) -> None:
     # the kernel's torque table over a block (a study drawing table values, and the
     # rev limit) against each row's table on the float path: interpolation at and
     # between the knots and beyond both ends, the peak torque and the peak power
-    # (a plateau: the first of equals), to the last bit
+    # (a plateau: the first of equals; the rows sought 24 at a time), to the last bit
     import numpy as np
 
+    from mdcalc.problems.acceleration import engine
     from mdcalc.problems.acceleration.engine import EngineCurve
+
+    monkeypatch.setattr(engine, "BEST_ROWS", 24)
 
     rng = np.random.default_rng(31)
     speeds = (100.0, 200.0, 300.0, 450.0, 600.0, 720.0)
@@ -382,3 +385,39 @@ def test_a_table_drawn_row_by_row_is_each_rows_own_table_to_the_bit() -> None:
             one = float(np.broadcast_to(limit, (rows,))[b])
             assert row(b).peak(one) == (peak[b], at_peak[b])
             assert row(b).max_power_speed(one) == power[b]
+
+
+def test_the_least_torque_over_a_span_is_the_least_of_a_fine_grid() -> None:
+    # EngineCurve.least bounds a gear's traction over a span of engine speeds (the
+    # kernel skips a scan where it proves the car pulls throughout): against the
+    # least of 20 001 speeds of each span, knots included, for a table with dips
+    # (drawn row by row, and fixed) and Leiderman's curves (concave, convex, linear)
+    import numpy as np
+
+    from mdcalc.problems.acceleration.engine import EngineCurve
+
+    rng = np.random.default_rng(5)
+    rows = 40
+    speeds = (100.0, 200.0, 300.0, 450.0, 600.0, 720.0)
+    fixed = (400.0, 300.0, 500.0, 200.0, 600.0, 520.0)
+    drawn = tuple(m * rng.uniform(0.8, 1.2, rows) for m in fixed)
+    low = rng.uniform(50.0, 700.0, rows)
+    high = low + rng.uniform(0.0, 300.0, rows)
+
+    def fine(b: int) -> np.ndarray:
+        inside = [s for s in speeds if low[b] <= s <= high[b]]
+        return np.sort(np.concatenate([np.linspace(low[b], high[b], 20_001), inside]))
+
+    for torques in (fixed, drawn):
+        least, scale = EngineCurve(speeds, torques).least(low, high)
+        for b in range(rows):
+            row = [float(np.broadcast_to(m, (rows,))[b]) for m in torques]
+            assert least[b] == pytest.approx(np.min(np.interp(fine(b), speeds, row)), rel=1e-12)
+            assert np.broadcast_to(scale, (rows,))[b] == max(abs(m) for m in row)
+    for a, b_, c in ((0.5, 1.5, 1.0), (1.2, -0.8, -0.3), (0.9, 0.2, 0.0)):
+        curve = EngineCurve((), (), 300.0, 500.0, (a, b_, c))
+        least, _ = curve.least(low, high)
+        for b in range(rows):
+            x = fine(b) / 500.0
+            dense = np.min(300.0 * (a + b_ * x - c * x * x))
+            assert least[b] == pytest.approx(dense, rel=1e-9, abs=1e-9)

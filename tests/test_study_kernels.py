@@ -319,6 +319,63 @@ def test_a_variator_study_that_draws_nothing_of_the_drive_solves_it_once(monkeyp
     assert len(set(answer["motor_critical_torque"].tolist())) == 3
 
 
+@pytest.mark.parametrize(
+    ("name", "change"),
+    [
+        ("high_power", {}),  # a table, adhesion, rear drive
+        ("high_power", {"adhesion": {"drive": "front"}}),
+        ("vaz2106", {}),  # Leiderman's curve
+        ("near_top_speed", {}),  # the top gear stops 0.011 % above the target
+        ("steep_hill", {}),
+    ],
+)
+def test_gears_proven_to_pull_up_to_the_rev_limit_are_the_ones_the_scan_finds(
+    name: str, change: dict, monkeypatch
+):
+    # A gear's limit is found by scanning 256 speeds up to the rev limit for the
+    # first that does not pull; the kernel skips the scan of a row where bounds
+    # (least torque against the most resistance over the span) prove every speed
+    # pulls. With drag, road and mass scattered widely, so that some gears stop
+    # short of the rev limit and some rows are not proven: the kernel's every key
+    # is the same, to the bit, with the proof as without it, and the proof held
+    # on proven and unproven rows alike.
+    from mdcalc.input.casefile import CaseText, validate
+    from mdcalc.problems.acceleration import kernel
+
+    module = PROBLEMS["acceleration"].load()
+    data = tomllib.loads((CASES / "acceleration" / f"{name}.toml").read_text(encoding="utf-8"))
+    data.pop("expect")
+    for section, values in change.items():
+        data[section].update(values)
+    data.setdefault("drag", {"drag_coefficient": 0.3, "frontal_area": 2.0})
+    base = validate(module.Case, CaseText(Path(f"{name}.toml"), "", data))
+    rng = np.random.default_rng(11)
+    n = 400
+    grid = {
+        "drag.drag_coefficient": data["drag"]["drag_coefficient"] * rng.uniform(0.3, 4.0, n),
+        "road.resistance": rng.uniform(0.0, 0.2, n),
+        "vehicle.mass": data["vehicle"]["mass"] * rng.uniform(0.7, 2.5, n),
+    }
+    proven: list[int] = []
+    unproven: list[int] = []
+    bound = kernel._pulls_throughout
+
+    def counting(*args):
+        out = bound(*args)
+        proven.append(int(np.sum(out)))
+        unproven.append(int(np.sum(~out)))
+        return out
+
+    monkeypatch.setattr(kernel, "_pulls_throughout", counting)
+    fast = module.sweep(base, grid)
+    monkeypatch.setattr(kernel, "_pulls_throughout", lambda s, g, v, top: np.zeros(v.shape, bool))
+    slow = module.sweep(base, grid)
+    assert fast is not None and slow is not None and fast.keys() == slow.keys()
+    for key in fast:
+        assert np.array_equal(fast[key], slow[key], equal_nan=True), key
+    assert sum(proven) > 0 and sum(unproven) > 0, (proven, unproven)
+
+
 def test_acceleration_kernel_draws_a_torque_table_and_its_rev_limit(monkeypatch):
     # A study may draw a torque table's values and the rev limit over it: each row
     # then has its own table, its own peak-torque launch speed and maximum-power

@@ -269,6 +269,43 @@ def _bisect(holds: Any, part: Scene, low: Any, high: Any, iterations: int, until
     return high
 
 
+#: A bound stands for the sign of every sample's acceleration where it clears zero by
+#: this share of the numbers it is made of (their rounding is ~10⁻¹⁵ of them).
+PROOF_MARGIN = 1e-9
+
+
+def _pulls_throughout(scene: Scene, gear: int, low: Any, high: Any) -> Any:
+    """The rows whose car the gear accelerates at every speed of [low, high], proven
+    by bounds (False: not proven): the least full-throttle torque over the engine
+    speeds those speeds give (the launch speed where the clutch slips) against the
+    resistance at ``high`` (R = ψ·m·g + k·v² rises with v ≥ 0); with adhesion, the
+    tyres' force less R at ``high`` (φ·(N - s·R)/(1 - s·φ) - R falls as R rises
+    where 1 - s·φ > 0) and the front wheels' lift limit. Each bound clears zero by
+    :data:`PROOF_MARGIN` of its numbers, and the speeds reach a hair beyond the
+    ends: so every sample of :func:`~.plan.gear_limit`'s scan pulls, and the scan,
+    which would find no speed that stops the car, is not needed (the rev limit)."""
+    import numpy as np
+
+    hair = 1e-12
+    top = high * (1.0 + hair)
+    omega_low = np.maximum(scene.engine_speed(gear, low) * (1.0 - hair), scene.launch)
+    torque, scale = scene.curve.least(omega_low, scene.engine_speed(gear, top))
+    to_force = scene.overall(gear) * scene.efficiency / scene.radius
+    resistance = scene.resistance(top)
+    proven = (low >= 0.0) & (
+        torque * to_force - resistance > PROOF_MARGIN * (scale * to_force + resistance)
+    )
+    if scene.phi is not None:
+        s = scene.transfer / scene.delta_free
+        grip = scene.adhesion_force(top)
+        proven &= (1.0 - s * scene.phi > 0.0) & (
+            grip - resistance > PROOF_MARGIN * (np.abs(grip) + resistance)
+        )
+        lift = scene.mass * scene.g - scene.axle_load  # the lift limit's numerator
+        proven &= (np.asarray(scene.transfer) <= 0.0) | (lift > PROOF_MARGIN * scene.mass * scene.g)
+    return np.broadcast_to(proven, np.shape(low))
+
+
 def gear_limit_block(scene: Scene, gear: int, v_in: Any, samples: int = 256) -> tuple[Any, Any]:
     """:func:`~.plan.gear_limit` for every row: (speed, is the rev limit)."""
     import numpy as np
@@ -280,6 +317,10 @@ def gear_limit_block(scene: Scene, gear: int, v_in: Any, samples: int = 256) -> 
     pulling = _pulls(scene, gear, v_in)
     rev[~above & ~pulling] = False
     scan = np.flatnonzero(~above & pulling)
+    if scan.size:  # a row that pulls at every speed up to the rev limit has no scan
+        proven = _pulls_throughout(take(scene, scan), gear, v_in[scan], v_rev[scan])
+        speed[scan[proven]] = v_rev[scan[proven]]
+        scan = scan[~proven]
     if not scan.size:
         return speed, rev
     part = take(scene, scan)
