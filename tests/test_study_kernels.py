@@ -320,23 +320,26 @@ def test_a_variator_study_that_draws_nothing_of_the_drive_solves_it_once(monkeyp
 
 
 @pytest.mark.parametrize(
-    ("name", "change"),
+    ("name", "change", "grip"),
     [
-        ("high_power", {}),  # a table, adhesion, rear drive
-        ("high_power", {"adhesion": {"drive": "front"}}),
-        ("vaz2106", {}),  # Leiderman's curve
-        ("near_top_speed", {}),  # the top gear stops 0.011 % above the target
-        ("steep_hill", {}),
+        ("high_power", {}, False),  # a table, adhesion, rear drive
+        ("high_power", {"adhesion": {"drive": "front"}}, False),
+        ("high_power", {}, True),  # φ drawn low: the tyres stop gears short
+        ("high_power", {"adhesion": {"drive": "front"}}, True),
+        ("vaz2106", {}, False),  # Leiderman's curve
+        ("near_top_speed", {}, False),  # the top gear stops 0.011 % above the target
+        ("steep_hill", {}, False),
     ],
 )
 def test_gears_proven_to_pull_up_to_the_rev_limit_are_the_ones_the_scan_finds(
-    name: str, change: dict, monkeypatch
+    name: str, change: dict, grip: bool, monkeypatch
 ):
     # A gear's limit is found by scanning 256 speeds up to the rev limit for the
     # first that does not pull; the kernel skips the scan of a row where bounds
     # (least torque against the most resistance over the span) prove every speed
-    # pulls. With drag, road and mass scattered widely, so that some gears stop
-    # short of the rev limit and some rows are not proven: the kernel's every key
+    # pulls. With drag, road and mass scattered widely (and adhesion, so that the
+    # tyres' grip falls to the resistance), so that some gears stop short of the
+    # rev limit and some rows are not proven: the kernel's every key
     # is the same, to the bit, with the proof as without it, and the proof held
     # on proven and unproven rows alike.
     from mdcalc.input.casefile import CaseText, validate
@@ -356,6 +359,8 @@ def test_gears_proven_to_pull_up_to_the_rev_limit_are_the_ones_the_scan_finds(
         "road.resistance": rng.uniform(0.0, 0.2, n),
         "vehicle.mass": data["vehicle"]["mass"] * rng.uniform(0.7, 2.5, n),
     }
+    if grip:
+        grid["adhesion.coefficient"] = rng.uniform(0.05, 0.6, n)
     proven: list[int] = []
     unproven: list[int] = []
     bound = kernel._pulls_throughout

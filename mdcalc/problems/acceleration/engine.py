@@ -180,13 +180,15 @@ class EngineCurve:
         return np.min(np.where(score == best, candidates, np.inf), axis=0)
 
     def least(self, low: Any, high: Any) -> tuple[Any, Any]:
-        """The least torque over the engine speeds [low, high] (arrays over a block's
-        rows), and the size of the numbers it is made of, against which its rounding
-        is measured: a table's largest |M|, Leiderman's M_N·(|a| + |b|·x + |c|·x²) at
-        ``high``. A table is piecewise linear (its least value is at an end or a
-        knot), Leiderman's curve a parabola (at an end or its vertex)."""
+        """The least torque over the engine speeds between ``low`` and ``high`` (in
+        either order; arrays over a block's rows), and the size of the numbers it is
+        made of, against which its rounding is measured: a table's largest |M|,
+        Leiderman's M_N·(|a| + |b|·x + |c|·x²) at the higher end. A table is
+        piecewise linear (its least value is at an end or a knot), Leiderman's curve
+        a parabola (at an end or its vertex)."""
         import numpy as np
 
+        low, high = np.minimum(low, high), np.maximum(low, high)
         ends = np.minimum(self.torque(low), self.torque(high))
         if self.is_table:
             inner = [self.torque(np.clip(s, low, high)) for s in self.speeds]
