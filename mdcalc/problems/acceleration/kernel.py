@@ -280,10 +280,12 @@ def _pulls_throughout(scene: Scene, gear: int, low: Any, high: Any) -> Any:
     speeds those speeds give (the launch speed where the clutch slips) against the
     resistance at ``high`` (R = ψ·m·g + k·v² rises with v ≥ 0); with adhesion, the
     tyres' force less R at ``high`` (φ·(N - s·R)/(1 - s·φ) - R falls as R rises
-    where 1 - s·φ > 0) and the front wheels' lift limit. Each bound clears zero by
-    :data:`PROOF_MARGIN` of its numbers, and the speeds reach a hair beyond the
-    ends: so every sample of :func:`~.plan.gear_limit`'s scan pulls, and the scan,
-    which would find no speed that stops the car, is not needed (the rev limit)."""
+    where 1 - s·φ > 0). The front wheels' lift limit does not depend on v: the
+    rows asked about pull at ``low``, so it is positive at every speed. Each bound
+    clears zero by :data:`PROOF_MARGIN` of its numbers, and the speeds reach a hair
+    beyond the ends: so every sample of :func:`~.plan.gear_limit`'s scan pulls, and
+    the scan, which would find no speed that stops the car, is not needed (the rev
+    limit)."""
     import numpy as np
 
     hair = 1e-12
@@ -301,8 +303,6 @@ def _pulls_throughout(scene: Scene, gear: int, low: Any, high: Any) -> Any:
         proven &= (1.0 - s * scene.phi > 0.0) & (
             grip - resistance > PROOF_MARGIN * (np.abs(grip) + resistance)
         )
-        lift = scene.mass * scene.g - scene.axle_load  # the lift limit's numerator
-        proven &= (np.asarray(scene.transfer) <= 0.0) | (lift > PROOF_MARGIN * scene.mass * scene.g)
     return np.broadcast_to(proven, np.shape(low))
 
 
