@@ -160,7 +160,10 @@ def reference(tree: Tree, env: dict[str, float]) -> float:
     if kind == "bin":
         left = reference(tree[2], env)
         right = reference(tree[3], env)
-        return BINARY[tree[1]](left, right)
+        value = BINARY[tree[1]](left, right)
+        if not math.isfinite(value):  # the formula's rule: an overflow may not hide in a < b
+            raise OverflowError(f"{tree[1]} gave {value}")
+        return value
     if kind == "pow":
         return math.pow(reference(tree[1], env), tree[2])
     if kind == "cmp":
