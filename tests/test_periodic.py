@@ -574,21 +574,91 @@ def test_near_resonance_is_finite_and_right() -> None:
     assert_states(got, expected, component_scale(data, expected), 1e-8)
 
 
-def test_critically_damped_mode_raises_or_is_right() -> None:
-    # ζ = 1 exactly: the first-order matrix is defective. The module may refuse it
-    # (ArithmeticError) but must not return a wrong state; next to it (ζ = 1 ± 1e-9) the
-    # answer must still be right.
-    for zeta in (1.0, 1.0 + 1e-9, 1.0 - 1e-9, 1.0 + 1e-6):
-        data = sdof(1.0, 1.0, zeta, 0.3, 1.0, -2.0, 1.0)
-        expected = fixed_point(data)
-        try:
-            got = exact_periodic(data.system()).states(np.array([0.0]))
-        except Unbounded:  # pragma: no cover - would be a wrong diagnosis
-            pytest.fail("a critically damped system is not an undamped resonance")
-        except ArithmeticError:
-            assert zeta == 1.0
-            continue
-        assert_states(got, expected, component_scale(data, expected), 1e-6)
+def critical_state(d: Data, tau: np.ndarray) -> np.ndarray:
+    """The periodic state of a critically damped sdof (ζ = 1) by hand: x'' + 2βx' +
+    β²x = F/m + u₀ + u₁τ has x = a + bτ + (C₁ + C₂τ)·e^{-βτ} with b = u₁/β²,
+    a = (F/m + u₀ - 2βb)/β², and C₁, C₂ from x(T) = x(0), x'(T) = x'(0)."""
+    m, k = d.m[0][0], d.k[0][0]
+    beta = math.sqrt(k / m)
+    assert d.c[0][0] == 2.0 * m * beta and d.s[0] == m
+    b = d.u1 / beta**2
+    a = (d.f[0] / m + d.u0 - 2.0 * beta * b) / beta**2
+    e, t = math.exp(-beta * d.t), d.t
+    # x(T) - x(0) = bT + C₁(e - 1) + C₂Te;  x'(T) - x'(0) = C₁β(1 - e) + C₂(e - βTe - 1)
+    c1, c2 = np.linalg.solve(
+        np.array([[e - 1.0, t * e], [beta * (1.0 - e), e - beta * t * e - 1.0]]),
+        np.array([-b * t, 0.0]),
+    )
+    tau = np.asarray(tau, dtype=float)
+    decay = np.exp(-beta * tau)
+    x = a + b * tau + (c1 + c2 * tau) * decay
+    v = b + (c2 - beta * (c1 + c2 * tau)) * decay
+    return np.stack([x, v], axis=-1)
+
+
+CRITICAL_SDOF = sdof(1.0, 2.0, 1.0, 1.0, -3.0, 2.0 / 0.7, 0.7)
+
+
+def test_critically_damped_mode_has_its_state() -> None:
+    # ζ = 1 exactly: the first-order matrix is defective (one eigenvalue -β twice, one
+    # eigenvector); the state is the hand-derived closed form, to round-off
+    assert CRITICAL_SDOF.c[0][0] == 4.0  # b = 2·m·β exactly
+    tau = np.linspace(0.0, CRITICAL_SDOF.t, 41)
+    expected = critical_state(CRITICAL_SDOF, tau)
+    got = exact_periodic(CRITICAL_SDOF.system()).states(tau)
+    assert_states(got, expected, np.max(np.abs(expected), axis=0), 1e-13)
+    # and its maximum of x and of -x against a fine search of the hand form
+    solution = exact_periodic(CRITICAL_SDOF.system())
+    fine = np.linspace(0.0, CRITICAL_SDOF.t, 200_001)
+    for sign in (1.0, -1.0):
+        x = sign * critical_state(CRITICAL_SDOF, fine)[:, 0]
+        got_max = maximum_of(solution, np.array([sign, 0.0]), solution.fastest)
+        # a grid of T/2·10⁵ misses the peak by at most its curvature times the step²
+        assert x.max() <= got_max.value <= x.max() + 1e-10
+        assert got_max.time == pytest.approx(fine[int(np.argmax(x))], abs=1e-5)
+
+
+@pytest.mark.parametrize(
+    "zeta", [1.0, 1.0 + 1e-15, 1.0 - 1e-14, 1.0 + 1e-12, 1.0 - 1e-9, 1.0 + 1e-6, 1.0 - 1e-3]
+)
+def test_nearly_critically_damped_mode_keeps_its_digits(zeta: float) -> None:
+    # near ζ = 1 the two eigenvectors are nearly parallel: the modal sum lost about
+    # ε/gap of the state (2e-8 at ζ = 1 + 4e-16) and ζ = 1 was refused; now every ζ
+    # gives the state of the exact period map (expm of the augmented system) to 1e-12
+    data = sdof(1.0, 1.0, zeta, 0.3, 1.0, -2.0, 1.0)
+    expected = fixed_point(data)
+    got = exact_periodic(data.system()).states(np.array([0.0, 0.37]))
+    assert_states(got[0], expected, component_scale(data, expected), 1e-12)
+    assert_states(
+        got[1], states_at(data, expected, [0.37])[0], component_scale(data, expected), 1e-12
+    )
+
+
+def test_a_block_mixes_rows_whose_eigenvalues_meet_with_modal_rows() -> None:
+    # a block of sdof rows at ζ = 0.3, 1, 1 + 1e-13, 2 and a 2-dof row: each row's maximum
+    # is that of the row alone (a block of one), to round-off
+    rows = [sdof(1.0, 2.0, z, 1.0, -3.0, 2.0 / 0.7, 0.7) for z in (0.3, 1.0, 1.0 + 1e-13, 2.0)]
+    systems = [r.system() for r in rows]
+    block = periodic.exact_block(
+        RampSystem(
+            np.stack([s.mass for s in systems]),
+            np.stack([s.damping for s in systems]),
+            np.stack([s.stiffness for s in systems]),
+            np.stack([s.constant for s in systems]),
+            np.stack([s.shape for s in systems]),
+            np.array([s.start for s in systems]),
+            np.array([s.slope for s in systems]),
+            np.array([s.period for s in systems]),
+        ),
+        len(rows),
+    )
+    assert block.meet.tolist() == [False, True, True, False]
+    values, times, _, _ = block.maxima(np.array([1.0, 0.0]))
+    for i, s in enumerate(systems):
+        alone = exact_periodic(s)
+        one = maximum_of(alone, np.array([1.0, 0.0]), alone.fastest)
+        assert values[i] == pytest.approx(one.value, rel=1e-14)
+        assert times[i] == pytest.approx(one.time, abs=1e-12)
 
 
 # ----------------------------------------------------------------------------- property
@@ -704,6 +774,8 @@ def test_a_block_of_states_gives_every_row_its_single_numbers_bit_for_bit() -> N
 
 
 def test_the_sampled_grid_keeps_the_exact_exponentials_digits() -> None:
+    from mdcalc.core.periodic.closed import _grid
+
     # the maxima's grid multiplies powers of e^{λh} between exact exponentials (and
     # adds the level and drift in the same matrix product): its values agree with
     # the state's own observe (exact exponentials) to 1e-12 of the modal part's
@@ -716,7 +788,7 @@ def test_the_sampled_grid_keeps_the_exact_exponentials_digits() -> None:
         tau = np.arange(samples) * (system.period / samples)
         exact = state.observe(w, tau)
         weights = (w @ state.vectors) * state.coefficients
-        grid = periodic._grid(
+        grid = _grid(
             np.array([float(w @ state.p0)]),
             np.array([float(w @ state.p1)]),
             weights[None],

@@ -1014,15 +1014,10 @@ def test_nearly_critically_damped_clutch(cli, write_case, offset) -> None:
     )
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="bug/limitation: a critically damped clutch (b = 2√(Jc), ζ = 1) has a finite "
-    "periodic state (χ ≈ 1.0555 here), but core.periodic.exact_periodic cannot diagonalize "
-    "the defective first-order matrix; variator refuses the case (exit 3 'the modes "
-    "cannot be separated'; exit 70 'internal error' before commit bdd97fa) although its "
-    "own Fourier and ODE methods would solve it",
-)
 def test_critically_damped_clutch_chi(cli, write_case) -> None:
+    # b = 2√(J·c) (ζ = 1): the first-order matrix is defective, and the closed form
+    # takes e^{Aτ} whole; χ is the one integrated from rest (it was exit 3, "the modes
+    # cannot be separated", before)
     mechanism = {"mechanisms": 4, "input_speed_rpm": 15.0, "mean_ratio": 2.0}
     drive = {
         "driven_inertia": 1.0,

@@ -288,6 +288,36 @@ def test_variator_samples_where_a_square_rounds_apart_equal_their_single_scenes(
                 assert answer[key][index] == quantity.value, (key, index)
 
 
+def test_variator_samples_at_and_near_critical_damping_equal_their_single_scenes(monkeypatch):
+    # b = 2√(Jc) (ζ = 1: a defective first-order matrix) and next to it: the kernel takes
+    # every row (none declined) and gives each single scene's numbers
+    from mdcalc import methods
+    from mdcalc.input.casefile import CaseText, validate
+    from mdcalc.input.model import DECLINED
+    from mdcalc.runs.runner import solve_model
+
+    module = PROBLEMS["variator"].load()
+    path = CASES / "variator" / "drive_critical.toml"
+    data = tomllib.loads(path.read_text(encoding="utf-8"))
+    data.pop("expect", None)
+    dampings = [4.0, 4.0 * (1.0 + 1e-9), 4.0 * (1.0 - 1e-6), 4.0 * (1.0 + 1e-3), 2.0, 40.0]
+    base = validate(module.Case, CaseText(path, "", data))
+    answer = module.sweep(base, {"drive.clutch_damping": np.array(dampings)})
+    assert not np.any(answer.pop(DECLINED, False))
+    monkeypatch.setattr(methods, "MIN_TIMING_SECONDS", 2e-5)
+    monkeypatch.setattr(methods, "REFERENCE_ONLY", True)
+    for index, b in enumerate(dampings):
+        sample = copy.deepcopy(data)
+        sample["drive"]["clutch_damping"] = b
+        _, report = solve_model(
+            "variator", module, validate(module.Case, CaseText(path, "", sample)), None
+        )
+        assert report.status == "ok", report.message
+        for key, quantity in report.results().items():
+            if key.startswith("drive_") and isinstance(quantity.value, float):
+                assert answer[key][index] == pytest.approx(quantity.value, rel=1e-12), (key, b)
+
+
 def test_a_variator_study_that_draws_nothing_of_the_drive_solves_it_once(monkeypatch):
     # vk_variator with only the motor's overload ratio drawn: every sample's drive
     # and anti-resonance numbers are the case's own (its single scene's, bit for

@@ -188,7 +188,11 @@ def _drive_methods(
             [periodic.maximum_of(exact, w, exact.fastest).value for _, w, _ in observables]
         )
 
-    methods = [Method("exact periodic state (modal, closed form)", exact_run, reference=True)]
+    # where two eigenvalues meet (a mode damped critically) there is no basis of modes
+    meet = "eigenvalues meet: e^{Aτ} by expm" if exact.matrix is not None else ""
+    methods = [
+        Method("exact periodic state (modal, closed form)", exact_run, reference=True, note=meet)
+    ]
     for k in drive.harmonics:
 
         def fourier_run(k: int = k) -> dict[str, float]:
