@@ -607,8 +607,15 @@ def test_critically_damped_mode_has_its_state() -> None:
     expected = critical_state(CRITICAL_SDOF, tau)
     got = exact_periodic(CRITICAL_SDOF.system()).states(tau)
     assert_states(got, expected, np.max(np.abs(expected), axis=0), 1e-13)
-    # and its maximum of x and of -x against a fine search of the hand form
+    # its rates: w = (1, 0) gives x', w = (0, 1) gives x'' from the equation of motion
     solution = exact_periodic(CRITICAL_SDOF.system())
+    d = CRITICAL_SDOF
+    x, v = expected[:, 0], expected[:, 1]
+    accel = (d.f[0] + d.s[0] * (d.u0 + d.u1 * tau) - d.c[0][0] * v - d.k[0][0] * x) / d.m[0][0]
+    scale = np.max(np.abs(expected), axis=0)
+    assert np.max(np.abs(solution.rate(np.array([1.0, 0.0]), tau) - v)) <= 1e-13 * scale[1]
+    assert np.max(np.abs(solution.rate(np.array([0.0, 1.0]), tau) - accel)) <= 1e-12 * scale[1]
+    # and its maximum of x and of -x against a fine search of the hand form
     fine = np.linspace(0.0, CRITICAL_SDOF.t, 200_001)
     for sign in (1.0, -1.0):
         x = sign * critical_state(CRITICAL_SDOF, fine)[:, 0]
@@ -632,6 +639,54 @@ def test_nearly_critically_damped_mode_keeps_its_digits(zeta: float) -> None:
     assert_states(
         got[1], states_at(data, expected, [0.37])[0], component_scale(data, expected), 1e-12
     )
+
+
+def test_a_row_that_meets_and_needs_a_million_samples() -> None:
+    # two uncoupled masses: one damped critically (β = 1), one at 4e5 rad/s, so the
+    # period takes 2²⁰ samples of a 4-wide state (more than a part of the block holds
+    # for one row); the slow mass's largest x is its own 1-dof maximum
+    system = RampSystem(
+        np.eye(2),
+        np.diag([2.0, 1600.0]),
+        np.diag([1.0, 1.6e11]),
+        np.array([0.5, 1.0]),
+        np.array([1.0, -0.3]),
+        2.0,
+        -5.0,
+        1.0,
+    )
+    state = exact_periodic(system)
+    assert state.matrix is not None
+    got = maximum_of(state, np.array([1.0, 0.0, 0.0, 0.0]), state.fastest)
+    assert got.samples == 2**20
+    alone = sdof(1.0, 1.0, 1.0, 0.5, 2.0, -5.0, 1.0)
+    assert alone.c[0][0] == 2.0
+    fine = np.linspace(0.0, 1.0, 200_001)
+    x = critical_state(alone, fine)[:, 0]
+    assert got.value == pytest.approx(float(x.max()), rel=1e-8)
+
+
+def test_a_coupled_stiff_system_with_a_critically_damped_mode() -> None:
+    # M = I, K = Q·diag(1, 1e6)·Q⁻¹, C = Q·diag(2, 100)·Q⁻¹: the slow mode is damped
+    # exactly critically, the fast one is 1000 times faster; the state is the exact
+    # period map's (expm of the augmented system) to its own round-off
+    q = [[1.0, 0.4], [-0.7, 1.3]]
+    qi = np.linalg.inv(q)
+    k = (np.array(q) @ np.diag([1.0, 1e6]) @ qi).tolist()
+    c = (np.array(q) @ np.diag([2.0, 100.0]) @ qi).tolist()
+    data = Data([[1.0, 0.0], [0.0, 1.0]], c, k, [0.5, 1.0], [1.0, -0.3], 2.0, -5.0, 2.0)
+    state = exact_periodic(data.system())
+    assert state.matrix is not None
+    expected = fixed_point(data)
+    tau = np.array([0.0, 0.3, 1.1])
+    scale = component_scale(data, expected)
+    assert_states(state.states(tau), states_at(data, expected, tau), scale, 1e-9)
+    for i in range(4):  # each coordinate's maximum (balancing scales each its own way)
+        w = np.eye(4)[i]
+        want, when = reference_maximum(data, expected, w)
+        got = maximum_of(state, w, state.fastest)
+        spread = float(np.max(np.abs(states_at(data, expected, [0.0, when])[:, i])))
+        assert got.value == pytest.approx(want, abs=1e-9 * spread)
 
 
 def test_a_block_mixes_rows_whose_eigenvalues_meet_with_modal_rows() -> None:

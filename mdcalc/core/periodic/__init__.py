@@ -15,7 +15,9 @@ Three ways to the periodic state, each with its own error:
   state and raises :class:`Unbounded`. Where two eigenvalues (nearly) meet -- a
   mode damped (nearly) critically, whose first-order matrix has no (well-
   conditioned) basis of eigenvectors -- e^{Aτ} is taken whole instead, by
-  ``scipy.linalg.expm``: d = (I - e^{AT})⁻¹·(b, 0)·T, y = p₀ + p₁τ + e^{Aτ}·d.
+  ``scipy.linalg.expm`` of the balanced B = S⁻¹·A·S: d = (I - e^{AT})⁻¹·(b, 0)·T,
+  y = p₀ + p₁τ + S·e^{Bτ}·S⁻¹·d. Its error is then about the state's own
+  sensitivity to an ulp of C and K (7·10⁻⁹ against 6·10⁻⁹ with modes 10⁴ apart).
 * :func:`fourier_periodic` -- the static part plus K harmonics of the sawtooth,
   u - ū = -u₁·(T/π)·Σ sin(kΩτ)/k, each through the frequency response
   (K - k²Ω²M + ikΩC)⁻¹. The forcing's harmonics fall off as 1/k only, so a stiff

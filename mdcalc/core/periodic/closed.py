@@ -16,7 +16,8 @@ from mdcalc.core.periodic.system import Observable, RampSystem, Unbounded, Unres
 @dataclass(frozen=True)
 class Periodic:
     """The exact periodic state: y(τ) = p₀ + p₁·τ + Re Σ Vᵢ·dᵢ·e^{λᵢτ}; or, where
-    eigenvalues meet (``matrix`` given), y(τ) = p₀ + p₁·τ + e^{Aτ}·d₀."""
+    eigenvalues meet (``matrix`` given), y(τ) = p₀ + p₁·τ + S·e^{Bτ}·d₀ with
+    B = S⁻¹·A·S balanced (``basis`` S: a permutation times powers of two)."""
 
     period: float
     eigenvalues: np.ndarray  # λ, 2n complex
@@ -24,8 +25,9 @@ class Periodic:
     coefficients: np.ndarray  # d in modal coordinates, 2n complex
     p0: np.ndarray
     p1: np.ndarray
-    matrix: np.ndarray | None = None  # A, 2n×2n: the state by e^{Aτ} (modes meet)
-    origin: np.ndarray | None = None  # d₀ = y(0) - p₀, 2n: ... from it
+    matrix: np.ndarray | None = None  # B, 2n×2n: the state by e^{Bτ} (modes meet)
+    origin: np.ndarray | None = None  # d₀ = S⁻¹·(y(0) - p₀), 2n: ... from it
+    basis: np.ndarray | None = None  # S, 2n×2n: ... back to y
 
     def observe(self, w: Observable, tau: np.ndarray) -> np.ndarray:
         if self.matrix is not None:
@@ -35,16 +37,16 @@ class Periodic:
         return float(w @ self.p0) + float(w @ self.p1) * tau + modal.real
 
     def rate(self, w: Observable, tau: np.ndarray) -> np.ndarray:
-        if self.matrix is not None and self.origin is not None:
+        if self.matrix is not None and self.origin is not None and self.basis is not None:
             flow = _flow(self.matrix, np.asarray(tau, dtype=float)) @ self.origin
-            return float(w @ self.p1) + flow @ (w @ self.matrix)
+            return float(w @ self.p1) + flow @ (w @ self.basis @ self.matrix)
         weights = (w @ self.vectors) * self.coefficients * self.eigenvalues
         return float(w @ self.p1) + (np.exp(np.outer(tau, self.eigenvalues)) @ weights).real
 
     def states(self, tau: np.ndarray) -> np.ndarray:
-        if self.matrix is not None and self.origin is not None:
+        if self.matrix is not None and self.origin is not None and self.basis is not None:
             flow = _flow(self.matrix, np.asarray(tau, dtype=float)) @ self.origin
-            return self.p0 + np.outer(tau, self.p1) + flow
+            return self.p0 + np.outer(tau, self.p1) + flow @ self.basis.T
         modal = (np.exp(np.outer(tau, self.eigenvalues)) * self.coefficients) @ self.vectors.T
         return self.p0 + np.outer(tau, self.p1) + modal.real
 
@@ -56,9 +58,9 @@ class Periodic:
     def block(self) -> PeriodicBlock:
         """This state as a block of one."""
         width = len(self.p0)
-        matrix, origin = np.zeros((width, width)), np.zeros(width)
-        if self.matrix is not None and self.origin is not None:
-            matrix, origin = self.matrix, self.origin
+        matrix, origin, basis = np.zeros((width, width)), np.zeros(width), np.eye(width)
+        if self.matrix is not None and self.origin is not None and self.basis is not None:
+            matrix, origin, basis = self.matrix, self.origin, self.basis
         return PeriodicBlock(
             np.array([self.period]),
             self.eigenvalues[None],
@@ -70,6 +72,7 @@ class Periodic:
             np.array([self.matrix is not None]),
             matrix[None],
             origin[None],
+            basis[None],
         )
 
 
@@ -90,11 +93,12 @@ class PeriodicBlock:
     p0: np.ndarray  # (m, 2n)
     p1: np.ndarray  # (m, 2n)
     failure: np.ndarray  # (m,) SOLVED, UNSEPARATED, AS_GOOD_AS_FREE or RESONANT
-    # rows whose eigenvalues meet, solved by e^{Aτ} (:class:`Periodic`): their A and
-    # d₀ (zeros elsewhere; their modal numbers mean nothing)
+    # rows whose eigenvalues meet, solved by e^{Bτ} (:class:`Periodic`): their B, d₀
+    # and S (zeros and I elsewhere; the modal numbers of a row that meets mean nothing)
     meet: np.ndarray  # (m,) bool
-    matrix: np.ndarray  # A, (m, 2n, 2n)
+    matrix: np.ndarray  # B, (m, 2n, 2n)
     origin: np.ndarray  # d₀, (m, 2n)
+    basis: np.ndarray  # S, (m, 2n, 2n)
 
     @property
     def fastest(self) -> np.ndarray:
@@ -116,6 +120,7 @@ class PeriodicBlock:
             self.p1[i],
             self.matrix[i] if meet else None,
             self.origin[i] if meet else None,
+            self.basis[i] if meet else None,
         )
 
     def maxima(
@@ -146,11 +151,13 @@ class PeriodicBlock:
             modal = np.exp(tau[..., None] * lam_rows) * slope_rows
             return drift_rows[:, None] + modal.sum(axis=-1).real
 
-        w_a = (w[:, None, :] @ self.matrix)[:, 0, :]  # w·A: the rate of the rows that meet
+        # the rows that meet observe w·S·e^{Bτ}·d₀ and its rate w·S·B·e^{Bτ}·d₀
+        w_s = (w[:, None, :] @ self.basis)[:, 0, :]
+        w_a = (w_s[:, None, :] @ self.matrix)[:, 0, :]
 
         def observe_flow(rows: np.ndarray, tau: np.ndarray) -> np.ndarray:
             flow = np.einsum(
-                "ksij,kj,ki->ks", _flow(self.matrix[rows], tau), self.origin[rows], w[rows]
+                "ksij,kj,ki->ks", _flow(self.matrix[rows], tau), self.origin[rows], w_s[rows]
             )
             return level[rows][:, None] + drift[rows][:, None] * tau + flow
 
@@ -167,10 +174,10 @@ class PeriodicBlock:
             for meet in (False, True):
                 group = np.flatnonzero(solved & (samples == count) & (self.meet == meet))
                 parts = max(1, -(-len(group) * int(count) * width // BLOCK_CELLS))
-                for rows in np.array_split(group, parts) if group.size else []:
+                for rows in np.array_split(group, min(parts, group.size)) if group.size else []:
                     h = self.period[rows] / count
                     if meet:
-                        grid = _flow_grid(level[rows], drift[rows], w[rows], self.matrix[rows],
+                        grid = _flow_grid(level[rows], drift[rows], w_s[rows], self.matrix[rows],
                                           self.origin[rows], h, int(count))  # fmt: skip
                         sampler, slope = observe_flow, rate_flow
                     else:
@@ -261,13 +268,14 @@ def _flow_grid(
     h: np.ndarray,
     count: int,
 ) -> np.ndarray:
-    """level + drift·jh + w·e^{A·jh}·d₀ for j = 0 … count - 1 of each row whose
-    eigenvalues meet: e^{A·jh} as e^{A·rh}·e^{A·mRUN·h} (j = m·RUN + r), each factor
+    """level + drift·jh + w·e^{B·jh}·d₀ for j = 0 … count - 1 of each row whose
+    eigenvalues meet (``w`` the observable times S): e^{B·jh} as e^{B·rh}·e^{B·mRUN·h}
+    (j = m·RUN + r), each factor
     an exponential of its own (no powers: no round-off that grows with j)."""
     run = min(RUN, count)
     start = np.arange(0, count, run) * h[:, None]  # (k, M): the anchors' times
-    anchors = np.einsum("kmij,kj->kmi", _flow(a, start), origin)  # e^{A·mRUN·h}·d₀
-    inside = np.einsum("ki,krij->krj", w, _flow(a, np.arange(run) * h[:, None]))  # w·e^{A·rh}
+    anchors = np.einsum("kmij,kj->kmi", _flow(a, start), origin)  # e^{B·mRUN·h}·d₀
+    inside = np.einsum("ki,krij->krj", w, _flow(a, np.arange(run) * h[:, None]))  # w·e^{B·rh}
     modal = np.einsum("krj,kmj->kmr", inside, anchors)
     times = start[:, :, None] + np.arange(run) * h[:, None, None]
     return (level[:, None, None] + drift[:, None, None] * times + modal).reshape(len(h), -1)
@@ -332,7 +340,7 @@ def exact_block(system: RampSystem, size: int = 1) -> PeriodicBlock:
     failure = np.where(broken, UNSEPARATED, SOLVED)
     # Eigenvalues that (nearly) meet -- a mode damped (nearly) critically -- have
     # (nearly) parallel eigenvectors, and the modal sum loses about ε/gap of the state
-    # (gap: their distance over their size). Such rows take e^{Aτ} whole.
+    # (gap: their distance over their size). Such rows take e^{Aτ} whole, balanced.
     meet = ~broken & (_closest(eigenvalues) < MEET)
     # the 1-norm condition (an inverse; the 2-norm's SVD cost three times as much)
     with np.errstate(all="ignore"):
@@ -355,13 +363,20 @@ def exact_block(system: RampSystem, size: int = 1) -> PeriodicBlock:
     modal = np.linalg.solve(vectors, p1.astype(complex)[..., None])[..., 0]
     coefficients = np.where(modes[:, None], t[:, None] * modal / gap, 0.0)
     matrix, origin = np.zeros_like(first), np.zeros_like(p1)
-    if meet.any():  # d₀ = (I - e^{AT})⁻¹·p₁·T
-        a = first[meet]
-        step = np.eye(2 * n) - _flow(a, t[meet][:, None])[:, 0]
-        matrix[meet] = a
-        origin[meet] = np.linalg.solve(step, (p1[meet] * t[meet][:, None])[..., None])[..., 0]
+    basis = np.broadcast_to(np.eye(2 * n), first.shape).copy()
+    if meet.any():  # balanced, B = S⁻¹·A·S; d₀ = (I - e^{BT})⁻¹·S⁻¹·p₁·T
+        from scipy.linalg import matrix_balance
+
+        # Balancing brings ‖B‖ near the fastest |λ| (‖A‖ holds K/M): without it expm's
+        # scaling and squaring lost 3x the conditioning of a stiff system's state
+        for i in np.flatnonzero(meet).tolist():
+            matrix[i], (scale, order) = matrix_balance(first[i], permute=True, separate=True)
+            basis[i] = np.eye(2 * n)[:, order] * scale
+        step = np.eye(2 * n) - _flow(matrix[meet], t[meet][:, None])[:, 0]
+        load = np.linalg.solve(basis[meet], (p1[meet] * t[meet][:, None])[..., None])
+        origin[meet] = np.linalg.solve(step, load)[..., 0]
     return PeriodicBlock(
-        t, eigenvalues, vectors, coefficients, p0, p1, failure, meet, matrix, origin
+        t, eigenvalues, vectors, coefficients, p0, p1, failure, meet, matrix, origin, basis
     )
 
 
