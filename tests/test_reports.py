@@ -149,3 +149,21 @@ def test_every_case_and_study_files_as_html_and_markdown(path):
 
 def test_the_plotted_cases_are_filed_by_the_plot_test():
     assert PLOTTED and PLOTTED <= set(FILES) and len(REST) + len(PLOTTED) == len(FILES)
+
+
+@pytest.mark.parametrize(
+    ("seconds", "shown"),
+    [
+        (9.996e-4, "1 ms"),  # rounds up across the unit: not "1e+03 µs"
+        (0.9996, "1 s"),
+        (1.234e-5, "12.3 µs"),
+        (0.0421, "42.1 ms"),
+        (12.34, "12.3 s"),
+        (1234.0, "1230 s"),  # three digits, in whole seconds
+        (None, "—"),
+    ],
+)
+def test_run_times_read_in_their_unit(seconds, shown):
+    from mdcalc.output.report import format_seconds
+
+    assert format_seconds(seconds) == shown

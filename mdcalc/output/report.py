@@ -230,10 +230,13 @@ def format_error(error: float | None) -> str:
 def format_seconds(seconds: float | None) -> str:
     if seconds is None:
         return "—"
+    seconds = float(f"{seconds:.3g}")  # 999.7 µs is 1 ms, not "1e+03 µs"
     if seconds < 1e-3:
         return f"{seconds * 1e6:.3g} µs"
     if seconds < 1:
         return f"{seconds * 1e3:.3g} ms"
+    if seconds >= 1e3:  # a long study: whole seconds, not "1.23e+03 s"
+        return f"{seconds:.0f} s"
     return f"{seconds:.3g} s"
 
 
