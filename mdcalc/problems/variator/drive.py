@@ -189,9 +189,14 @@ def _drive_methods(
         )
 
     # where two eigenvalues meet (a mode damped critically) there is no basis of modes
-    meet = "eigenvalues meet: e^{Aτ} by expm" if exact.matrix is not None else ""
+    meet = exact.matrix is not None
     methods = [
-        Method("exact periodic state (modal, closed form)", exact_run, reference=True, note=meet)
+        Method(
+            f"exact periodic state ({'e^{Aτ}' if meet else 'modal'}, closed form)",
+            exact_run,
+            reference=True,
+            note="eigenvalues meet: e^{Aτ} by expm" if meet else "",
+        )
     ]
     for k in drive.harmonics:
 
