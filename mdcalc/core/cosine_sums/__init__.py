@@ -5,6 +5,10 @@ moments of a chain's springs after suddenly applied torques (:mod:`.chain`).
   of the fastest resolved mode and Newton refinement of every candidate on its slope.
 * :func:`maxima` -- the same for a block of rows at once (a study's samples), S sums
   per row sharing its frequencies and window; a single scene is a block of one.
+
+Its parts: :mod:`.samples` (the sums' samples, by products of exponentials, not
+cosines) and :mod:`.candidates` (the samples that may lie below the largest value,
+on the whole grid or in the windows that hold them, and which are worth refining).
 """
 
 from __future__ import annotations
@@ -12,9 +16,11 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
+
+from mdcalc.core.cosine_sums import candidates
+from mdcalc.core.cosine_sums.samples import Sums
 
 
 @dataclass(frozen=True)
@@ -48,10 +54,6 @@ class Maxima:
 
 SAMPLES_PER_PERIOD = 16
 SAMPLE_BUDGET = 1 << 22
-#: Samples evaluated at once (rows × times of a tile).
-_TILE = 1 << 18
-#: Samples of the grid between two exact angles (see ``grid_values``).
-RUN = 32
 #: Newton steps on a candidate's slope: from the middle of its bracket (two sample
 #: steps, an eighth of the fastest period) Newton converges quadratically, and a
 #: step it cannot take halves the bracket instead. Its time is then set by the
@@ -121,54 +123,10 @@ def maxima(
     for k in range(modes):
         curvature = curvature + np.abs(b_slow[:, :, k]) * w[:, k, None] * w[:, k, None]
     slack = curvature * step[:, None] * step[:, None] / 8.0
-
-    def grid_values(at: np.ndarray, index: np.ndarray) -> np.ndarray:
-        """The S sums of rows ``at`` at their samples ``index`` (a run of consecutive
-        sample numbers, shared by the rows): (G, S, K). The angle w·(t₀ + j·Δt)
-        splits at a multiple of RUN samples, w·(t₀ + m·Δt) + w·r·Δt, so that
-        B·cos(A + R) = (B·cos A)·cos R - (B·sin A)·sin R: the factors of the anchors
-        (m) and of the run (r) are cosines of their own, and each run of RUN samples
-        of a sum is one small matrix product over the modes (and the constant),
-        where a cosine of each sample cost ten times as much; the split rounds the
-        angle no worse than w·t itself."""
-        first = int(index[0]) - int(index[0]) % RUN  # a multiple of RUN at or below
-        anchors = -(-(int(index[-1]) - first + 1) // RUN)
-        size = len(at)
-        t0, dt = start[at][:, None], step[at][:, None]
-        t_anchor = t0 + dt * (first + RUN * np.arange(anchors))[None, :]  # (G, M)
-        t_run = dt * np.arange(RUN)[None, :]  # (G, RUN)
-        # each sum's anchor factors (G, S, M, 2·modes + 1) times the run's (G, ·, RUN)
-        factors = np.empty((size, series, anchors, 2 * modes + 1))
-        runs = np.empty((size, 2 * modes + 1, RUN))
-        for k in range(modes):
-            wk = w[at, k][:, None]
-            a, r = wk * t_anchor, wk * t_run
-            bk = b_slow[at, :, k][:, :, None]
-            factors[:, :, :, 2 * k] = bk * np.cos(a)[:, None, :]
-            factors[:, :, :, 2 * k + 1] = bk * -np.sin(a)[:, None, :]
-            runs[:, 2 * k] = np.cos(r)
-            runs[:, 2 * k + 1] = np.sin(r)
-        factors[:, :, :, -1] = constant[at][:, :, None]
-        runs[:, -1] = 1.0
-        total = factors.reshape(size, series * anchors, -1) @ runs
-        skip = int(index[0]) - first
-        return total.reshape(size, series, anchors * RUN)[:, :, skip : skip + len(index)]
-
-    # Candidates (row, sum, sample index), by tiles of rows of like sample counts:
-    # rows grouped by the power of two above their count, so that a tile pads a row
-    # by at most twice its samples.
-    found: list[tuple[np.ndarray, np.ndarray, np.ndarray]] = []
-    live = np.flatnonzero(sampled.any(axis=1))
-    level = np.ceil(np.log2(counts[live])).astype(np.int64)
-    for value in np.unique(level):
-        members = live[level == value]
-        per = max(1, _TILE // (series * int(np.max(counts[members]))))
-        for first in range(0, len(members), per):
-            group = members[first : first + per]
-            found.append(_candidates(group, counts[group], slack, grid_values))
-    at = np.concatenate([f[0] for f in found]) if found else np.array([], dtype=int)
-    which = np.concatenate([f[1] for f in found]) if found else np.array([], dtype=int)
-    picked = np.concatenate([f[2] for f in found]) if found else np.array([], dtype=int)
+    sums = Sums(constant, b_slow, w, start, step)
+    found = candidates.find(sums, np.flatnonzero(sampled.any(axis=1)), counts, slack)
+    kept = candidates.worth_refining(sums, found)
+    at, which, picked = found[0][kept], found[1][kept], found[2][kept]
     t0, dt, t1 = start[at], step[at], end[at]
     low = np.clip(t0 + dt * (picked - 1), t0, t1)
     high = np.clip(t0 + dt * (picked + 1), t0, t1)
@@ -263,59 +221,3 @@ def _sums(constant: np.ndarray, b: np.ndarray, w: np.ndarray, t: np.ndarray) -> 
     for k in range(b.shape[1]):
         total = total + b[:, k] * np.cos(w[:, k] * t)
     return total
-
-
-def _candidates(
-    group: np.ndarray,
-    counts: np.ndarray,
-    slack: np.ndarray,
-    grid_values: Any,
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """The sampled local maxima within the slack of the best sample of each sum, for
-    the rows of ``group`` (a sample past a row's count is no sample): their rows,
-    sums and sample indices. The few samples within the slack are found first (a
-    comparison and a flat search of the block), the local maxima among them after."""
-    width = int(np.max(counts))
-    series = slack.shape[1]
-    chunk = max(1, _TILE // (series * len(group)))
-    limit = counts[:, None]
-
-    def sampled(index: np.ndarray) -> np.ndarray:
-        """The sums at ``index``, -inf where a row has no such sample: before its
-        first (index -1) and from its count on (the columns past the smallest)."""
-        values = grid_values(group, index)
-        values[:, :, : int(np.searchsorted(index, 0))] = -np.inf
-        cut = int(np.searchsorted(index, np.min(counts)))
-        if cut < len(index):
-            outside = index[None, cut:] >= limit  # (G, K')
-            values[:, :, cut:] += np.where(outside, -np.inf, 0.0)[:, None, :]
-        return values
-
-    whole = None
-    if width <= chunk:  # one tile: evaluated once for both passes
-        whole = sampled(np.arange(-1, width + 1))
-        best = np.max(whole, axis=2)
-    else:
-        best = np.full((len(group), series), -np.inf)
-        for first in range(0, width, chunk):  # the best sample of each sum
-            index = np.arange(first, min(first + chunk, width))
-            best = np.maximum(best, np.max(sampled(index), axis=2))
-    floor = (best - slack[group])[:, :, None]
-    rows, sums, indices = [], [], []
-    for first in range(0, width, chunk):  # the local maxima near it
-        index = np.arange(first - 1, min(first + chunk + 1, width + 1))
-        values = whole if whole is not None else sampled(index)
-        middle = values[:, :, 1:-1]
-        row, which, col = np.unravel_index(np.flatnonzero(middle >= floor), middle.shape)
-        here = values[row, which, col + 1]
-        at = index[col + 1]
-        keep = (
-            (here >= values[row, which, col])
-            & (here >= values[row, which, col + 2])
-            & (at >= 0)
-            & (at < counts[row])
-        )
-        rows.append(group[row[keep]])
-        sums.append(which[keep])
-        indices.append(at[keep])
-    return np.concatenate(rows), np.concatenate(sums), np.concatenate(indices)
