@@ -23,6 +23,7 @@ import pytest
 
 from mdcalc.core import cosine_sums
 from mdcalc.core.cosine_sums import candidates, samples
+from mdcalc.core.powers import powers
 from tests.test_chain import brute_max
 
 
@@ -116,10 +117,10 @@ def test_powers_round_like_exact_exponentials() -> None:
     theta = np.array([2.0**-10, 0.375, 2.875, 1234.5])
     eps = np.finfo(float).eps
     for count in (16, 64, 4096):
-        table = samples.powers(np.exp(1j * theta), count)
+        table = powers(np.exp(1j * theta), count)
         k = np.arange(count)
         exact = np.exp(1j * np.multiply.outer(k, theta))
         assert np.all(
             np.abs(table - exact) <= (2.0 * k + 2.0 * math.log2(count) + 2.0)[:, None] * eps
         )
-    assert samples.powers(np.exp(1j * theta), 0).shape == (0, 4)
+    assert powers(np.exp(1j * theta), 0).shape == (0, 4)

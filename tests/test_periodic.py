@@ -831,8 +831,9 @@ def test_a_block_of_states_gives_every_row_its_single_numbers_bit_for_bit() -> N
 def test_the_sampled_grid_keeps_the_exact_exponentials_digits() -> None:
     from mdcalc.core.periodic.closed import _grid
 
-    # the maxima's grid multiplies powers of e^{λh} between exact exponentials (and
-    # adds the level and drift in the same matrix product): its values agree with
+    # the maxima's grid multiplies powers of e^{λh} between anchors, the anchors
+    # powers of e^{λ·RUN·h} between exact exponentials (and adds the level and drift
+    # in the same matrix product): its values agree with
     # the state's own observe (exact exponentials) to 1e-12 of the modal part's
     # scale plus the level's and drift's
     rng = np.random.default_rng(5)

@@ -8,7 +8,8 @@ import math
 
 import numpy as np
 
-from mdcalc.core.cosine_sums.samples import Sums, powers
+from mdcalc.core.cosine_sums.samples import Sums
+from mdcalc.core.powers import powers
 
 #: Samples evaluated at once (rows × times of a tile).
 TILE = 1 << 18

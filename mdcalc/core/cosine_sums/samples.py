@@ -8,6 +8,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from mdcalc.core.powers import powers
+
 #: Samples of a run of the whole grid: each run of a sum is one small matrix product.
 RUN = 32
 #: Anchors between two exact exponentials (the rest are their powers).
@@ -27,7 +29,7 @@ class Sums:
     of the run are taken apart, and a run of samples of a sum is one small matrix
     product over the modes (and the constant). The factors are powers: e^{iw·rΔt} of
     e^{iwΔt}, e^{iwA} an exact exponential every ANCHOR_POWERS anchors times powers
-    between (:func:`powers`). A sample so carries a rounding of some 100ε of
+    between (:func:`~mdcalc.core.powers.powers`). A sample so carries a rounding of some 100ε of
     R + Σ|B| (a window longer than FINE samples: its length times ε), far inside
     the sampling error the search allows for (the slack)."""
 
@@ -115,18 +117,3 @@ class Sums:
         runs[:, -1] = 1.0
         total = factors.reshape(size, series * count, -1) @ runs
         return total.reshape(size, series, count, runs.shape[2])
-
-
-def powers(z: np.ndarray, count: int) -> np.ndarray:
-    """z⁰ … z^(count-1) of every element of ``z``, along a new first axis: by
-    doubling (the first n powers times zⁿ give the next n), each a product of about
-    2·log₂(count) factors. For z = e^{iθ}, zᵏ is within about (k + 2·log₂ k)·ε of
-    e^{ikθ}: z's own rounding, k times, and the products'."""
-    table = np.empty((count,) + np.shape(z), dtype=complex)
-    table[:1] = 1.0
-    done = 1
-    while done < count:
-        more = min(done, count - done)
-        table[done : done + more] = table[:more] * (table[done - 1] * z)
-        done += more
-    return table
