@@ -211,6 +211,25 @@ def test_every_case_file_a_page_names_is_there():
             assert (ROOT / name).is_file(), f"{page.relative_to(ROOT)}: {name}"
 
 
+def test_the_pages_lists_are_lists():
+    # MkDocs' Markdown takes a list only after a blank line, and a nested item only
+    # at four spaces: a list right under a paragraph, or nested by two, renders as
+    # one run-on paragraph ("... M/R: - the natural ... - the static ...")
+    item = re.compile(r"^(\d+\.|[-*]) ")
+    for page in PAGES:
+        fence = False
+        lines = page.read_text("utf-8").splitlines()
+        for number, (before, line) in enumerate(zip(["", *lines], lines, strict=False), start=1):
+            fence = fence != line.lstrip().startswith("```")
+            if fence or line.lstrip().startswith("```"):
+                continue
+            where = f"{page.relative_to(ROOT)}:{number}"
+            if item.match(line):
+                paragraph = before.strip() and not before.startswith((" ", "#", "|"))
+                assert not (paragraph and not item.match(before)), f"{where}: a blank line first"
+            assert not re.match(r"^ {1,3}(\d+\.|[-*]) ", line), f"{where}: nest by 4 spaces"
+
+
 def test_the_masks_keep_numbers_and_drop_run_times():
     table = (
         "┃ method ┃ value ┃ rel. error ┃ run time ┃\n"
