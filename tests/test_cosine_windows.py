@@ -12,6 +12,8 @@ replace, and the plain search against an independent one.
 * The maxima over a 20-period horizon against ``brute_max`` of ``test_chain``: a dense
   grid (200 points per fastest period) and scipy's bounded scalar search.
 * The powers that replace cosines round like exact exponentials.
+* Edge cases a review found: a negative frequency, a peak within the first sample
+  step after a zero slope at t = 0, two peaks within two samples (an "M").
 """
 
 from __future__ import annotations
@@ -124,3 +126,60 @@ def test_powers_round_like_exact_exponentials() -> None:
             np.abs(table - exact) <= (2.0 * k + 2.0 * math.log2(count) + 2.0)[:, None] * eps
         )
     assert powers(np.exp(1j * theta), 0).shape == (0, 4)
+
+
+def test_a_negative_frequency_is_its_absolute_value() -> None:
+    # cos is even; a long row with a negative largest term's frequency crashed
+    found = cosine_sums.cosine_sum_maximum(0.0, [1.0, 0.1], [-1.0, 10.0], 0.0, 200 * math.pi)
+    same_sum = cosine_sums.cosine_sum_maximum(0.0, [1.0, 0.1], [1.0, 10.0], 0.0, 200 * math.pi)
+    assert (found.value, found.time) == (same_sum.value, same_sum.time)
+    assert found.value == pytest.approx(1.1, abs=1e-15)
+
+
+@pytest.mark.parametrize(
+    ("b", "w", "end"),
+    [  # the peak inside the first sample step; inside the second
+        ([-0.208067277, -1177.27692, -0.0957848474, 2097.25763],
+         [20.22943001, 26.16186871, 1.54664533, 19.53867533], 0.22090181696668532),
+        ([17.04054339, 1062.46380788, 1665.15402929, -589.01131453],
+         [9.73009366, 8.01424954, 10.00836568, 20.27660224], 0.260356008392412),
+    ],
+)  # fmt: skip
+def test_a_peak_right_after_a_flat_start_is_found(b, w, end) -> None:
+    # f'(0) = 0 exactly (sin 0) at a local minimum, the peak within two sample
+    # steps: the bracket's zero slope takes the sign just inside it, and a bracket
+    # whose slope keeps its sign is split at its sample (both were taken for a peak
+    # at t = 0: 2.7e-4 and 1.8e-4 below the maximum)
+    found = cosine_sums.cosine_sum_maximum(0.0, b, w, 0.0, end)
+    expected, _ = brute_max(0.0, np.array(b), np.array(w), 0.0, end)
+    assert found.value == pytest.approx(expected, rel=1e-13)
+    assert found.time > 0.0
+
+
+def test_two_peaks_within_two_samples_are_never_below_the_best_sample() -> None:
+    # an "M" top: the higher hump falls between two samples neither of which is a
+    # sampled local maximum. The answer is at least the best sample (it was below
+    # it), so within the sampling error of the truth.
+    h = 2 * math.pi / 320
+    start = -9.3 * h
+    b, w = np.array([1.0, -0.0025231250]), np.array([1.0, 20.0])
+    found = cosine_sums.cosine_sum_maximum(0.0, b.tolist(), w.tolist(), start, start + 40 * h)
+    grid = start + h * np.arange(41)  # the samples the search takes (16 per 2π/20)
+    best_sample = float(np.max(np.cos(np.outer(grid, w)) @ b))
+    truth, _ = brute_max(0.0, b, w, start, start + 40 * h)
+    slack = float(np.sum(np.abs(b) * w * w)) * h * h / 8
+    assert best_sample <= found.value <= truth + 1e-15
+    assert truth - found.value <= slack
+
+
+@pytest.mark.parametrize(("ratio", "offset"), [(1.0196215996670155, -0.41455850197502575),
+                                               (1.018279890786035, 0.64015150034107)])  # fmt: skip
+def test_an_m_top_whose_higher_hump_is_inside_the_bracket(ratio: float, offset: float) -> None:
+    # the bracket's slope keeps its sign, the higher hump lies between the sample and
+    # an end: split at the sample, that half is refined (it was missed, by 4e-7)
+    h = 2 * math.pi / 320
+    start = (offset - 10.0) * h
+    b, w = np.array([1.0, -ratio / 400.0]), np.array([1.0, 20.0])
+    found = cosine_sums.cosine_sum_maximum(0.0, b.tolist(), w.tolist(), start, start + 40 * h)
+    truth, _ = brute_max(0.0, b, w, start, start + 40 * h)
+    assert found.value == pytest.approx(truth, rel=1e-13)

@@ -2,13 +2,15 @@
 moments of a chain's springs after suddenly applied torques (:mod:`.chain`).
 
 * :func:`cosine_sum_maximum` -- one sum, found by sampling at 16 points per period
-  of the fastest resolved mode and Newton refinement of every candidate on its slope.
+  of the fastest resolved mode and Newton refinement on its slope of every candidate
+  that can still win.
 * :func:`maxima` -- the same for a block of rows at once (a study's samples), S sums
   per row sharing its frequencies and window; a single scene is a block of one.
 
 Its parts: :mod:`.samples` (the sums' samples, by products of exponentials, not
-cosines) and :mod:`.candidates` (the samples that may lie below the largest value,
-on the whole grid or in the windows that hold them, and which are worth refining).
+cosines) and :mod:`.candidates` (the sampled local maxima near which the largest
+value may lie, found on the whole grid or in the windows that hold them, and which
+of them are worth refining).
 """
 
 from __future__ import annotations
@@ -95,13 +97,18 @@ def maxima(
 
     Sampled at 16 points per period of the fastest mode that fits the budget (and
     that some sum of the row has); every sampled local maximum within the sampling
-    error of the best is refined by Newton on its slope between its two neighbouring
-    samples. Modes faster than the budget allows are added at their amplitude |Bⱼ|
+    error of the best that can still win (:func:`.candidates.worth_refining`) is
+    refined by Newton on its slope between its two neighbouring samples. A long row
+    is sampled only where such a maximum can lie (:func:`.candidates.windows`).
+    Modes faster than the budget allows are added at their amplitude |Bⱼ|
     (they swing through it within each of their periods), and the result says it is
     a bound with its error ½·Σ|B·β²|·(π/β_fast)². A row's result does not depend on
-    the other rows.
+    the other rows. It is never below the best sample; a peak that rises between two
+    samples without making either a sampled local maximum (a nearly flat top of two
+    humps closer than two samples) is found only to within the sampling error.
     """
     rows, series, modes = amplitudes.shape
+    frequencies = np.abs(frequencies)  # cos is even: a negative β is its |β|
     order = np.argsort(frequencies, axis=1, kind="stable")
     w = np.take_along_axis(frequencies, order, axis=1)
     b = np.take_along_axis(amplitudes, order[:, None, :], axis=2)
@@ -132,12 +139,27 @@ def maxima(
     high = np.clip(t0 + dt * (picked + 1), t0, t1)
     # The peak between each candidate's neighbours, all candidates of all rows at
     # once: Newton on the slope f' = -Σ b·w·sin(w·t) (f'' = -Σ b·w²·cos(w·t)) inside
-    # the bracket, halving it where a step would leave it. A bracket whose slope
-    # does not change sign (a window's end) holds its peak at the end that rises.
+    # the bracket, halving it where a step would leave it (a slope of 0 at an end,
+    # as at t = 0, takes the sign of the slope just inside it: f''s). A bracket
+    # whose slope does not change sign is split at the sample (two peaks close
+    # together, an "M", or a peak at the row's end): a half whose slope does is
+    # refined; with none, the peak is at the end that rises (and the sample itself
+    # is a point below).
     bc, wc = b_slow[at, which], w[at]
-    g_low, _ = _slopes(bc, wc, low)
-    g_high, _ = _slopes(bc, wc, high)
+    g_low, bend_low = _slopes(bc, wc, low)
+    g_high, bend_high = _slopes(bc, wc, high)
+    g_low = np.where(g_low == 0.0, bend_low, g_low)
+    g_high = np.where(g_high == 0.0, -bend_high, g_high)
     edge = ~((g_low > 0.0) & (g_high < 0.0))
+    middle = np.clip(t0 + dt * picked, t0, t1)
+    split = np.flatnonzero(edge)
+    if split.size:
+        g_middle, _ = _slopes(bc[split], wc[split], middle[split])
+        left = (g_low[split] > 0.0) & (g_middle < 0.0)
+        right = ~left & (g_middle > 0.0) & (g_high[split] < 0.0)
+        high[split[left]], g_high[split[left]] = middle[split[left]], g_middle[left]
+        low[split[right]], g_low[split[right]] = middle[split[right]], g_middle[right]
+        edge[split[left | right]] = False
     x = np.where(edge, np.where(g_high >= 0.0, high, low), 0.5 * (low + high))
     inside = np.flatnonzero(~edge)
     lo, hi, xi = low[inside], high[inside], x[inside]
@@ -160,13 +182,16 @@ def maxima(
         if not inside.size:
             break
     x[inside] = xi
-    # Every sum's candidates in time order, then its window's two ends: the first
-    # largest value wins.
+    # Every sum's refined candidates in time order, its window's two ends, then the
+    # samples of the candidates whose bracket held no root (so never below a sample:
+    # a candidate left unrefined is below another's sample): the first largest wins.
     row_of = np.repeat(np.arange(rows), series)
     sum_of = np.tile(np.arange(series), rows)
-    point_rows = np.concatenate([at, row_of, row_of])
-    point_sums = np.concatenate([which, sum_of, sum_of])
-    points = np.concatenate([x, start[row_of], end[row_of]])
+    # (a refined bracket's peak is at least its sample; the row's ends are points)
+    inner = np.flatnonzero(edge & (picked > 0) & (picked < counts[at] - 1))
+    point_rows = np.concatenate([at, row_of, row_of, at[inner]])
+    point_sums = np.concatenate([which, sum_of, sum_of, which[inner]])
+    points = np.concatenate([x, start[row_of], end[row_of], middle[inner]])
     values = _sums(
         constant[point_rows, point_sums], b_slow[point_rows, point_sums], w[point_rows], points
     )

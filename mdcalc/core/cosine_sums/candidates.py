@@ -13,6 +13,7 @@ from mdcalc.core.powers import powers
 
 #: Samples evaluated at once (rows × times of a tile).
 TILE = 1 << 18
+EPS = float(np.finfo(float).eps)
 #: Rows of at least this many samples are sampled in windows (:func:`windows`)...
 WINDOW_SAMPLES = 1024
 #: ... where each sum has at least this many samples per peak of its largest term...
@@ -37,10 +38,10 @@ def find(sums: Sums, live: np.ndarray, counts: np.ndarray, slack: np.ndarray) ->
         members = live[level == value]
         if int(np.max(counts[members])) >= WINDOW_SAMPLES:
             whole: list[np.ndarray] = []
-            per = max(1, TILE // (series * int(np.max(counts[members])) // WINDOW_SPACING))
+            per = max(1, TILE // (series * (int(np.max(counts[members])) // WINDOW_SPACING)))
             for first in range(0, len(members), per):
                 group = members[first : first + per]
-                use, low, high, wide = windows(sums, group, counts[group], slack[group])
+                use, low, high, wide = windows(sums, group, counts, slack)
                 whole.append(group[~use])
                 order = np.argsort(wide[use])  # like with like
                 group, wide = group[use][order], wide[use][order]
@@ -60,7 +61,7 @@ def find(sums: Sums, live: np.ndarray, counts: np.ndarray, slack: np.ndarray) ->
         per = max(1, TILE // (series * int(np.max(counts[members]))))
         for first in range(0, len(members), per):
             group = members[first : first + per]
-            found.append(on_grid(sums, group, counts[group], slack))
+            found.append(on_grid(sums, group, counts, slack))
     return joined(found)
 
 
@@ -74,9 +75,11 @@ def joined(found: list[Candidates]) -> Candidates:
 
 def on_grid(sums: Sums, group: np.ndarray, counts: np.ndarray, slack: np.ndarray) -> Candidates:
     """The sampled local maxima within the slack of the best sample of each sum, for
-    the rows of ``group`` (a sample past a row's count is no sample). The few
+    the rows of ``group`` (a sample past a row's count is no sample; ``counts`` and
+    ``slack`` of every row, as for :func:`windows` and :func:`in_windows`). The few
     samples within the slack are found first (a comparison and a flat search of the
     block), the local maxima among them after."""
+    counts, slack = counts[group], slack[group]
     width = int(np.max(counts))
     series = sums.series
     chunk = max(1, TILE // (series * len(group)))
@@ -102,7 +105,7 @@ def on_grid(sums: Sums, group: np.ndarray, counts: np.ndarray, slack: np.ndarray
         for first in range(0, width, chunk):  # the best sample of each sum
             index = np.arange(first, min(first + chunk, width))
             best = np.maximum(best, np.max(sampled(index), axis=2))
-    floor = (best - slack[group])[:, :, None]
+    floor = (best - slack)[:, :, None]
     found: list[Candidates] = []
     for first in range(0, width, chunk):  # the local maxima near it
         index = np.arange(first - 1, min(first + chunk + 1, width + 1))
@@ -122,9 +125,9 @@ def windows(
     sums: Sums, group: np.ndarray, counts: np.ndarray, slack: np.ndarray
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """The windows of samples that hold every candidate of a sum and its two
-    neighbours, for the rows of ``group`` (``counts`` and ``slack`` theirs): whether a row is
-    sampled in its windows, their first and last samples (G, S, P) and each row's
-    longest window.
+    neighbours, for the rows of ``group``: whether a row is sampled in its windows,
+    their first and last samples (G, S, P; a peak's window outside the row is
+    clipped to its first or last sample) and each row's longest window.
 
     A candidate lies within its sum's slack of the best sample, so at or above
     L - slack, L a lower bound of the best sample. A sum R + Σ Bₖ·cos(βₖt) is there
@@ -132,11 +135,13 @@ def windows(
     L - slack - R - Σ_{k≠j}|Bₖ| there: within arccos of that over |Bⱼ| of a peak of
     βⱼt. L: the sum's largest value at those peaks less the slack (the best sample
     is within the slack of the sum's largest value). An allowance for rounding of
-    10⁻⁹ of the sum's scale and of the angle, and two samples each side. A row is
+    10⁻⁹ of the sum's scale, and of 8ε of its angles (a sample's angle w·t rounds
+    by ε·w·t), of 10⁻⁹ of the angle, and two samples each side. A row is
     windowed where it has at least WINDOW_SAMPLES samples, at least WINDOW_SPACING
     samples per peak of that term in each sum, and windows that cover at most
     WINDOW_SHARE of its samples in each sum."""
     constant, b, w = sums.constant[group], sums.amplitudes[group], sums.frequencies[group]
+    counts, slack = counts[group], slack[group]
     rows, series, modes = b.shape
     magnitude = np.abs(b)
     j = np.argmax(magnitude, axis=2)  # (G, S): each sum's largest term
@@ -166,7 +171,8 @@ def windows(
         value = value + b[:, :, k] * phase.real
     value = np.where(turns[:, None, None] < inside, value, -np.inf)
     lower = np.max(value, axis=0, initial=-np.inf) - slack
-    allowance = 1e-9 * (np.abs(constant) + magnitude.sum(axis=2))
+    angles = np.max(w, axis=1) * np.maximum(np.abs(t0[:, 0]), np.abs(t0[:, 0] + dt[:, 0] * counts))
+    allowance = (1e-9 + 8.0 * EPS * angles[:, None]) * (np.abs(constant) + magnitude.sum(axis=2))
     below = lower - slack - constant - (magnitude.sum(axis=2) - np.abs(bj)) - allowance
     with np.errstate(all="ignore"):
         reach = np.arccos(np.clip(below / np.abs(bj), -1.0, 1.0))
@@ -202,14 +208,14 @@ def in_windows(
     ``width`` long, moved inside its row where it would cross its end (past that
     end where the row is shorter: no samples there); a candidate counts in the
     window whose own samples hold it (the best sample is the best of them all)."""
-    ends = counts[group] - 1
+    ends, slack = counts[group] - 1, slack[group]
     starts = np.clip(low, 0, np.maximum(ends + 1 - width, 0)[:, None, None])
     values = sums.windows(group, starts, width)  # (G, S, P, W)
     if int(np.max(starts + (width - 1) - ends[:, None, None])) > 0:
         values[starts[..., None] + np.arange(width) > ends[:, None, None, None]] = -np.inf
     size, series = values.shape[:2]
     values = values.reshape(size, series, -1)
-    floor = (np.max(values, axis=2) - slack[group])[:, :, None]
+    floor = (np.max(values, axis=2) - slack)[:, :, None]
     row, which, col = np.unravel_index(np.flatnonzero(values >= floor), values.shape)
     window, place = np.divmod(col, width)
     at = starts[row, which, window] + place

@@ -83,7 +83,8 @@ class Sums:
     def windows(self, at: np.ndarray, starts: np.ndarray, width: int) -> np.ndarray:
         """The sums of rows ``at`` at ``width`` samples from each of ``starts``
         (G, S, P), each sum its own windows: (G, S, P, width). A window's anchor is
-        its first sample a = FINE·q + r: e^{iw(t₀ + aΔt)} = e^{iw(t₀ + FINE·qΔt)}·e^{iw·rΔt}."""
+        its first sample a, a - a₀ = FINE·q + r from the tile's lowest start a₀:
+        e^{iw(t₀ + aΔt)} = e^{iw(t₀ + (a₀ + FINE·q)Δt)}·e^{iw·rΔt}."""
         size, count = len(at), starts.shape[2]
         t0, dt = self.start[at], self.step[at]
         low = int(np.min(starts))

@@ -99,6 +99,8 @@ def periodic_maxima(
     top = np.argmax(values, axis=1)  # a local maximum of its row, or a row of NaN
     best_value, best_time = values[line, top], top * step
     margin = 0.05 * (best_value - np.min(values, axis=1))
+    # the best sample's own value, exactly (the grid's carries its products' rounding)
+    exact = observe(rows, best_time[:, None])[:, 0]
     # the samples within reach of the best (few: one comparison and a flat search),
     # then the local maxima among them, neighbours taken across the period's end
     near = np.flatnonzero(values >= (best_value - margin)[:, None])
@@ -130,7 +132,7 @@ def periodic_maxima(
     g_low, g_high = g_low[inside], g_high[inside]
     who = rows[owner]
     if len(owner) == 0:
-        return best_value, best_time
+        return exact, best_time
     # The slope's root by regula falsi, Illinois' way (the end that stays twice has
     # its slope halved): superlinear, a rate evaluation a step, and never outside
     # the bracket; from a bracket of two sample steps 16 steps reach the rounding.
@@ -168,6 +170,7 @@ def periodic_maxima(
     refined = observe(who, middle[:, None])[:, 0]
     order = np.lexsort((-refined, owner))  # each row's best refined peak first
     first = order[np.r_[True, owner[order][1:] != owner[order][:-1]]]
+    best_value = exact
     better = refined[first] > best_value[owner[first]]
     best_value[owner[first][better]] = refined[first][better]
     best_time[owner[first][better]] = middle[first][better]
