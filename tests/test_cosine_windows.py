@@ -76,6 +76,21 @@ def test_windows_find_what_the_whole_grid_finds(seed: int, monkeypatch) -> None:
     same(windowed, cosine_sums.maxima(*block))
 
 
+def test_a_row_its_windows_cannot_hold_falls_back_to_the_whole_grid(monkeypatch) -> None:
+    # every windowed row reported lost (a sample within the slack at a window's
+    # edge): each is sampled whole, with the same results
+    block = hoist_like(np.random.default_rng(11), 120, 2, 3)
+    windowed = cosine_sums.maxima(*block)
+    original = candidates.in_windows
+
+    def all_lost(sums, group, *args):
+        found, _ = original(sums, group, *args)
+        return tuple(part[:0] for part in found), group
+
+    monkeypatch.setattr(candidates, "in_windows", all_lost)
+    same(windowed, cosine_sums.maxima(*block))
+
+
 @pytest.mark.parametrize("seed", range(4))
 def test_candidates_left_unrefined_could_not_win(seed: int, monkeypatch) -> None:
     rng = np.random.default_rng(20 + seed)
