@@ -163,12 +163,13 @@ def test_a_negative_frequency_is_its_absolute_value() -> None:
 def test_a_peak_right_after_a_flat_start_is_found(b, w, end) -> None:
     # f'(0) = 0 exactly (sin 0) at a local minimum, the peak within two sample
     # steps: the bracket's zero slope takes the sign just inside it, and a bracket
-    # whose slope keeps its sign is split at its sample (both were taken for a peak
-    # at t = 0: 2.7e-4 and 1.8e-4 below the maximum)
-    found = cosine_sums.cosine_sum_maximum(0.0, b, w, 0.0, end)
-    expected, _ = brute_max(0.0, np.array(b), np.array(w), 0.0, end)
-    assert found.value == pytest.approx(expected, rel=1e-13)
-    assert found.time > 0.0
+    # whose slope keeps its sign (from a hair before 0) is scanned for a root (both
+    # were taken for a peak at t = 0: 2.7e-4 and 1.8e-4 below the maximum)
+    for start in (0.0, -1e-12):  # (a hair off the zero slope: no zero at the end)
+        found = cosine_sums.cosine_sum_maximum(0.0, b, w, start, end)
+        expected, _ = brute_max(0.0, np.array(b), np.array(w), start, end)
+        assert found.value == pytest.approx(expected, rel=1e-13)
+        assert found.time > 0.0
 
 
 def test_two_peaks_within_two_samples_are_never_below_the_best_sample() -> None:

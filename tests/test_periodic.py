@@ -858,8 +858,8 @@ def test_the_sampled_grid_keeps_the_exact_exponentials_digits() -> None:
 
 
 def test_a_maximum_is_its_states_value_at_its_time() -> None:
-    # where no refined peak beats the best sample (a maximum at a jump of the load),
-    # the answer is the state there evaluated exactly, not the grid's sample (whose
+    # where no refined peak beats the best sample, the answer is the state there
+    # evaluated exactly, not the grid's sample (whose
     # products round: 3.2e-12 of the value above the true maximum was seen); each
     # value is the state's at its time to the rounding of its modal sum
     rng = np.random.default_rng(2)
@@ -956,3 +956,16 @@ def test_refinement_reaches_a_peaks_time_and_a_flat_peaks_value(tau0: float) -> 
     assert value == pytest.approx(1.0, rel=1e-15)
     # its value is flat to the rounding within about ε^¼ of its time
     assert abs((time - tau0 + 0.5 * period) % period - 0.5 * period) <= 1e-4 * period
+
+
+def test_a_sampled_nan_stays_nan() -> None:
+    # a grid with a NaN has no maximum to report: NaN, not the function's value at
+    # the NaN's time (the exact re-evaluation of the best sample keeps it)
+    from mdcalc.core.periodic import periodic_maximum
+
+    period, samples = 2 * math.pi, 256
+    tau = np.arange(samples) * (period / samples)
+    sampled = np.cos(tau)
+    sampled[100] = np.nan
+    value, _ = periodic_maximum(np.cos, lambda t: -np.sin(t), period, samples, sampled)
+    assert math.isnan(value)

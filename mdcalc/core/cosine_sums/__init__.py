@@ -61,6 +61,8 @@ SAMPLE_BUDGET = 1 << 22
 #: step it cannot take halves the bracket instead. Its time is then set by the
 #: rounding of the slope, about ε of the period; the value is flat to second order.
 NEWTON_STEPS = 10
+#: Parts a bracket without a root is scanned in for one (an "M" top).
+SCAN_STEPS = 16
 
 
 def cosine_sum_maximum(
@@ -141,10 +143,10 @@ def maxima(
     # once: Newton on the slope f' = -Σ b·w·sin(w·t) (f'' = -Σ b·w²·cos(w·t)) inside
     # the bracket, halving it where a step would leave it (a slope of 0 at an end,
     # as at t = 0, takes the sign of the slope just inside it: f''s). A bracket
-    # whose slope does not change sign is split at the sample (two peaks close
-    # together, an "M", or a peak at the row's end): a half whose slope does is
-    # refined; with none, the peak is at the end that rises (and the sample itself
-    # is a point below).
+    # whose slope does not change sign (two peaks close together, an "M", or a peak
+    # at the row's end) is scanned at SCAN_STEPS points, and its change from + to -
+    # of the highest value is refined; with none, the peak is at the end that rises
+    # (and the sample itself is a point below).
     bc, wc = b_slow[at, which], w[at]
     g_low, bend_low = _slopes(bc, wc, low)
     g_high, bend_high = _slopes(bc, wc, high)
@@ -152,14 +154,22 @@ def maxima(
     g_high = np.where(g_high == 0.0, -bend_high, g_high)
     edge = ~((g_low > 0.0) & (g_high < 0.0))
     middle = np.clip(t0 + dt * picked, t0, t1)
-    split = np.flatnonzero(edge)
-    if split.size:
-        g_middle, _ = _slopes(bc[split], wc[split], middle[split])
-        left = (g_low[split] > 0.0) & (g_middle < 0.0)
-        right = ~left & (g_middle > 0.0) & (g_high[split] < 0.0)
-        high[split[left]], g_high[split[left]] = middle[split[left]], g_middle[left]
-        low[split[right]], g_low[split[right]] = middle[split[right]], g_middle[right]
-        edge[split[left | right]] = False
+    scan = np.flatnonzero(edge & (high > low))
+    if scan.size:
+        parts = np.arange(SCAN_STEPS + 1) / SCAN_STEPS
+        at_scan = low[scan, None] + (high - low)[scan, None] * parts  # (E, SCAN_STEPS + 1)
+        bs, ws = bc[scan], wc[scan]
+        g_scan = np.stack([_slopes(bs, ws, at_scan[:, j])[0] for j in range(len(parts))], 1)
+        g_scan[:, 0], g_scan[:, -1] = g_low[scan], g_high[scan]  # (a zero end's own sign)
+        zero = np.zeros(len(scan))
+        f_scan = np.stack([_sums(zero, bs, ws, at_scan[:, j]) for j in range(len(parts))], 1)
+        change = (g_scan[:, :-1] > 0.0) & (g_scan[:, 1:] <= 0.0)
+        score = np.where(change, np.maximum(f_scan[:, :-1], f_scan[:, 1:]), -np.inf)
+        j, rooted = np.argmax(score, axis=1), change.any(axis=1)
+        pick, line = scan[rooted], np.arange(len(scan))[rooted]
+        low[pick], high[pick] = at_scan[line, j[rooted]], at_scan[line, j[rooted] + 1]
+        g_low[pick], g_high[pick] = g_scan[line, j[rooted]], g_scan[line, j[rooted] + 1]
+        edge[pick] = False
     x = np.where(edge, np.where(g_high >= 0.0, high, low), 0.5 * (low + high))
     inside = np.flatnonzero(~edge)
     lo, hi, xi = low[inside], high[inside], x[inside]

@@ -99,8 +99,9 @@ def periodic_maxima(
     top = np.argmax(values, axis=1)  # a local maximum of its row, or a row of NaN
     best_value, best_time = values[line, top], top * step
     margin = 0.05 * (best_value - np.min(values, axis=1))
-    # the best sample's own value, exactly (the grid's carries its products' rounding)
-    exact = observe(rows, best_time[:, None])[:, 0]
+    # the best sample's own value, exactly (the grid's carries its products' rounding;
+    # a row of NaN stays NaN)
+    exact = np.where(np.isnan(best_value), best_value, observe(rows, best_time[:, None])[:, 0])
     # the samples within reach of the best (few: one comparison and a flat search),
     # then the local maxima among them, neighbours taken across the period's end
     near = np.flatnonzero(values >= (best_value - margin)[:, None])
