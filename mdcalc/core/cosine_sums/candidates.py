@@ -134,9 +134,9 @@ def windows(
     at most R + Bⱼ·cos(βⱼt) + Σ_{k≠j}|Bₖ|, so its largest term j reaches at least
     L - slack - R - Σ_{k≠j}|Bₖ| there: within arccos of that over |Bⱼ| of a peak of
     βⱼt. L: the sum's largest value at those peaks less the slack (the best sample
-    is within the slack of the sum's largest value). An allowance for rounding of
-    10⁻⁹ of the sum's scale, and of 8ε of its angles (a sample's angle w·t rounds
-    by ε·w·t), of 10⁻⁹ of the angle, and two samples each side. A row is
+    is within the slack of the sum's largest value). Allowances for rounding: on
+    the sum, 10⁻⁹ of its scale plus 8ε·w·t of it (a sample's angle w·t rounds by
+    ε·w·t); on a window's edges, 10⁻⁹ of the angle and two samples. A row is
     windowed where it has at least WINDOW_SAMPLES samples, at least WINDOW_SPACING
     samples per peak of that term in each sum, and windows that cover at most
     WINDOW_SHARE of its samples in each sum."""
