@@ -84,12 +84,13 @@ def periodic_maxima(
     of rows (``rows`` names them to ``observe`` and ``rate``): values and times.
 
     Every sampled local maximum within reach of the best sample is refined, all at
-    once, by regula falsi on the derivative between its neighbours (times taken
-    modulo T: the state is continuous across the period's end). With 16 samples per
-    period of the fastest mode a sample lies at most 1 - cos(π/16) ≈ 2 % of that
-    mode's amplitude below its peak, so peaks more than 5 % of the sampled range below the
-    best cannot win; when many ringing peaks tie, all of them are refined (up to
-    ``candidates`` a row, the largest first)."""
+    once, by regula falsi on the derivative between its neighbours (the state is
+    continuous across the period's end, its rate need not be: a peak at τ = 0 is
+    sought on either side of it). With 16 samples per period of the fastest mode a
+    sample lies at most 1 - cos(π/16) ≈ 2 % of that mode's amplitude below its
+    peak, so peaks more than 5 % of the sampled range below the best cannot win;
+    when many ringing peaks tie, all of them are refined (up to ``candidates`` a
+    row, the largest first)."""
     line = np.arange(len(rows))
     step = period / samples
     if sampled is None:
@@ -119,13 +120,23 @@ def periodic_maxima(
             keep[found] = False
             keep[found[np.argsort(here[found])[::-1][:candidates]]] = True
         owner, where = owner[keep], where[keep]
+    # Each peak's bracket is its two neighbours, within [0, T]: the rate may jump
+    # at τ = 0 (a velocity's rate is the acceleration, and the load jumps there),
+    # and regula falsi across a jump need not settle. A peak at the sample τ = 0 has
+    # two brackets, [0, h] and [T - h, T]; the rate at T is its left limit.
+    wraps = where == 0
+    owner = np.concatenate([owner, owner[wraps]])
+    start = np.concatenate(
+        [np.maximum(where - 1, 0), np.full(np.count_nonzero(wraps), samples - 1)]
+    )
+    end = np.concatenate([where + 1, np.full(np.count_nonzero(wraps), samples)])
     h, p = step[owner], period[owner]
-    low, high = where * h - h, where * h + h
+    low, high = start * h, np.where(end < samples, end * h, p)
 
     who = rows[owner]  # one array for the calls that follow (a sampler may keep its rows)
 
     def slope(at: np.ndarray) -> np.ndarray:
-        return rate(who, (at % p)[:, None])[:, 0]
+        return rate(who, at[:, None])[:, 0]
 
     g_low, g_high = slope(low), slope(high)
     inside = (g_low > 0.0) & (g_high < 0.0)
