@@ -496,13 +496,23 @@ def test_periodic_maximum_between_samples() -> None:
 
 
 def test_samples_for_resolves_the_fastest_mode() -> None:
-    for period, fastest in ((1.0, 1.0), (0.015, 2.4e3), (0.015, 4.2e6), (1.0, 3e4)):
-        samples, resolved = samples_for(period, fastest)
-        wanted = 16 * fastest * period / (2 * math.pi)
-        assert samples >= 256 and samples & (samples - 1) == 0  # a power of two
+    # the least count of the ladder 256, 320, 384, 448, 512, 640, … (four an octave:
+    # 5/8, 6/8, 7/8 and all of a power of two) at or above 16 samples per period of
+    # the fastest mode, up to 2²⁰; each a whole number of runs of 32
+    rungs = [256] + [2**p * q // 8 for p in range(9, 21) for q in (5, 6, 7, 8)]
+    rng = np.random.default_rng(8)
+    fastest = np.concatenate(
+        [[1.0, 2.4e3, 4.2e6, 3e4], 10 ** rng.uniform(0, 7, 400)]
+        + [np.array(rungs, dtype=float) * 2 * math.pi / 16 * f for f in (1.0, 1 - 1e-15, 1 + 1e-15)]
+    )
+    for each in fastest:
+        period = 0.015 if each > 1e6 else 1.0
+        samples, resolved = samples_for(period, each)
+        wanted = 16 * each * period / (2 * math.pi)
+        assert samples in rungs and samples % 32 == 0
         assert resolved == (samples >= wanted)
         if resolved:
-            assert samples < max(2 * wanted, 512)
+            assert samples == min(r for r in rungs if r >= wanted), each
     assert samples_for(1.0, 1e9) == (2**20, False)
 
 
@@ -1026,3 +1036,54 @@ def test_a_velocitys_peak_beside_the_loads_jump_is_found() -> None:
             shortfalls.append((np.max(state.observe(w, near)) - values[i]) / scale)
     assert len(shortfalls) >= 70
     assert max(shortfalls) <= 1e-12
+
+
+@pytest.mark.parametrize("coordinates", [1, 2, 3])
+def test_the_modes_are_eigenpairs_of_the_first_order_system(coordinates: int) -> None:
+    # one or two coordinates: eigvals polished by a Newton step on det(λ²M + λC + K),
+    # and each vector (x, λx) with x the null vector of λ²M + λC + K; more: numpy's
+    # eig. Every pair has a residual |A·v - λ·v| of the rounding of A's size, every
+    # vector is a unit one, and a conjugate pair of eigenvalues has conjugate vectors
+    # bit for bit (the grid evaluates one of them)
+    from mdcalc.core.periodic.closed import _modes
+
+    rng = np.random.default_rng(coordinates)
+    n, m = coordinates, 400
+    q = rng.normal(size=(3, m, n, n))
+    mass = q[0] @ np.swapaxes(q[0], -1, -2) + 0.1 * np.eye(n)
+    scale = 10 ** rng.uniform(0, 10, (m, 1, 1))
+    stiffness = scale * (q[1] @ np.swapaxes(q[1], -1, -2) + 0.01 * np.eye(n))
+    damping = np.sqrt(scale) * 10 ** rng.uniform(-3, 1, (m, 1, 1)) * (q[2] @ q[2].swapaxes(-1, -2))
+    system = RampSystem(mass, damping, stiffness, np.zeros((m, n)), np.ones((m, n)), 0.0, 1.0, 1.0)
+    first = system.first_order()
+    lam, vectors = _modes(first, mass, damping, stiffness)
+    assert lam.shape == (m, 2 * n) and vectors.shape == (m, 2 * n, 2 * n)
+    size = np.linalg.norm(first, axis=(-2, -1), ord=2)[:, None]
+    residual = np.linalg.norm(first @ vectors - vectors * lam[:, None, :], axis=-2)
+    assert np.all(residual <= 2e-14 * size)
+    assert np.allclose(np.linalg.norm(vectors, axis=-2), 1.0, rtol=1e-15, atol=0)
+    pairs = (lam[:, 1:] == np.conj(lam[:, :-1])) & (lam[:, :-1].imag != 0)
+    assert pairs.sum() > 100
+    rows, cols = np.nonzero(pairs)
+    assert np.array_equal(vectors[rows, :, cols + 1], np.conj(vectors[rows, :, cols]))
+
+
+def test_a_stiff_overdamped_modes_slow_eigenvalue_keeps_its_digits() -> None:
+    # m·λ² + c·λ + k = 0 with c² ≫ 4mk: the slow root by the stable formula
+    # (q = -(c + √(c² - 4mk))/2, λ = k/q, no cancellation) against _modes. eigvals
+    # alone has it to about ε·|λ_fast| (up to 7e-6 of itself here, with |λ_fast/λ_slow|
+    # up to 10¹¹); Newton steps on the pencil take it to its own rounding
+    from mdcalc.core.periodic.closed import _modes
+
+    rng = np.random.default_rng(4)
+    m = 200
+    mass = rng.uniform(0.5, 2.0, (m, 1, 1))
+    stiffness = rng.uniform(1e3, 1e4, (m, 1, 1))
+    damping = 10 ** rng.uniform(3, 5.5, (m, 1, 1)) * np.sqrt(mass * stiffness)
+    first = RampSystem(mass, damping, stiffness, np.zeros((m, 1)), np.ones((m, 1)), 0.0, 1.0, 1.0)
+    lam, _ = _modes(first.first_order(), mass, damping, stiffness)
+    a, c, k = mass[:, 0, 0], damping[:, 0, 0], stiffness[:, 0, 0]
+    q = -(c + np.sqrt(c * c - 4 * a * k)) / 2
+    slow = lam[np.arange(m), np.argmin(np.abs(lam), axis=1)]
+    assert np.all(slow.imag == 0)
+    assert np.max(np.abs(slow.real - k / q) / np.abs(k / q)) < 1e-14

@@ -331,9 +331,7 @@ def exact_block(system: RampSystem, size: int = 1) -> PeriodicBlock:
     p0 = np.concatenate([a, b], axis=-1)
     p1 = np.concatenate([b, np.zeros((m, n))], axis=-1)
     first = replace(system, mass=mass, damping=c, stiffness=k).first_order()
-    eigenvalues, vectors = np.linalg.eig(first)
-    # complex throughout: an overdamped block's are all real, and numpy says so
-    eigenvalues, vectors = eigenvalues.astype(complex), vectors.astype(complex)
+    eigenvalues, vectors = _modes(first, mass, c, k)
     failure = np.where(broken, UNSEPARATED, SOLVED)
     # Eigenvalues that (nearly) meet -- a mode damped (nearly) critically -- have
     # (nearly) parallel eigenvectors, and the modal sum loses about ε/gap of the state
@@ -375,6 +373,69 @@ def exact_block(system: RampSystem, size: int = 1) -> PeriodicBlock:
     return PeriodicBlock(
         t, eigenvalues, vectors, coefficients, p0, p1, failure, meet, matrix, origin, basis
     )
+
+
+def _modes(
+    first: np.ndarray, mass: np.ndarray, damping: np.ndarray, stiffness: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """Eigenvalues and unit eigenvectors of each row's first-order matrix A, complex
+    throughout (an overdamped block's are all real, and numpy says so). A system of
+    one or two coordinates takes its eigenvalues alone (eigvals) and each
+    eigenvector as (x, λx), x the null vector of λ²M + λC + K: of one coordinate 1,
+    of two the larger row of that 2×2 turned a right angle (numpy's batched eig of
+    4×4 matrices costs 1.7 times its eigvals). Conjugate eigenvalues get conjugate
+    vectors, bit for bit."""
+    n = mass.shape[-1]
+    if n > 2:
+        eigenvalues, vectors = np.linalg.eig(first)
+        return eigenvalues.astype(complex), vectors.astype(complex)
+    lam = np.linalg.eigvals(first).astype(complex)  # (m, 2n)
+    mass, damping, stiffness = mass[:, None], damping[:, None], stiffness[:, None]
+
+    def pencil(at: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """λ²M + λC + K and its derivative 2λM + C at each eigenvalue."""
+        at = at[..., None, None]
+        return (at * at) * mass + at * damping + stiffness, (2.0 * at) * mass + damping
+
+    # Newton steps on det(λ²M + λC + K): eigvals has each λ to about ε·‖A‖, so a
+    # slow mode of a stiff system only to ε·|λ_fast/λ_slow| of itself; a step
+    # squares that (the determinant of at most 2×2 carries rounding of its terms'
+    # size only). Up to three steps, each taken only where it is under 1 % of λ; an
+    # eigenvalue stops once its step is under 1e-14 of it (its own steps, whatever
+    # the block holds: a row alone gets the same digits).
+    going = np.ones(lam.shape, dtype=bool)
+    for _ in range(3):
+        q, dq = pencil(lam)
+        if n == 1:
+            det, slope = q[..., 0, 0], dq[..., 0, 0]
+        else:
+            det = q[..., 0, 0] * q[..., 1, 1] - q[..., 0, 1] * q[..., 1, 0]
+            slope = (
+                dq[..., 0, 0] * q[..., 1, 1]
+                + q[..., 0, 0] * dq[..., 1, 1]
+                - dq[..., 0, 1] * q[..., 1, 0]
+                - q[..., 0, 1] * dq[..., 1, 0]
+            )
+        with np.errstate(all="ignore"):
+            step = det / slope
+            size = np.abs(step) / np.abs(lam)
+        taken = going & np.isfinite(step) & (size <= 1e-2)
+        lam = np.where(taken, lam - step, lam)
+        going = taken & (size > 1e-14)
+        if not going.any():
+            break
+    if n == 1:
+        x = np.ones(lam.shape + (1,), dtype=complex)
+    else:
+        q = pencil(lam)[0]
+        rows = np.sum(np.abs(q) ** 2, axis=-1)  # (m, 4, 2): each row's size
+        row = np.where(rows[..., 0] >= rows[..., 1], 0, 1)[..., None, None]
+        larger = np.take_along_axis(q, np.broadcast_to(row, lam.shape + (1, 2)), axis=-2)
+        x = np.stack([larger[..., 0, 1], -larger[..., 0, 0]], axis=-1)
+    vectors = np.concatenate([x, lam[..., None] * x], axis=-1)  # (m, 2n modes, 2n)
+    with np.errstate(all="ignore"):  # (a zero pencil, two modes alike: they meet)
+        vectors = vectors / np.linalg.norm(vectors, axis=-1, keepdims=True)
+    return lam, np.swapaxes(vectors, -1, -2)
 
 
 #: Eigenvalues closer than this (relative to the larger) are solved by e^{Aτ}: the
