@@ -989,26 +989,58 @@ def test_a_sampled_nan_stays_nan() -> None:
 
 @pytest.mark.parametrize(("rise", "jump"), [(1e-4, 5.0), (1e-3, 50.0), (1e-2, 500.0), (1e-3, 5e3)])
 def test_a_peak_just_after_the_rates_jump_at_the_periods_start(rise: float, jump: float) -> None:
-    # f = cos τ + a·τ + J·τ²(τ - T)/T² is continuous across the period's end, but its
-    # rate jumps there, from a + J to a (a velocity under the sawtooth: the load
-    # jumps at τ = 0); its peak lies a hair after τ = 0, within the first sample
-    # step. Regula falsi on a bracket across the jump did not settle and returned
-    # τ = 0, up to 3e-7 below the peak; the peak is found on [0, h]. Its time: the
-    # rate's root by brentq.
+    # f = cos τ + a·τ(T - τ)/T + J·τ²(τ - T)/T² is continuous across the period's end
+    # (f(0) = f(T) = 1, T = 2π), but its rate jumps there, from J - a to a (a velocity
+    # under the sawtooth: the load jumps at τ = 0); its peak lies a hair after τ = 0,
+    # within the first sample step. Regula falsi on a bracket across the jump did not
+    # settle and returned τ = 0, up to 3e-7 below the peak; the peak is found on
+    # [0, h]. Its time: the rate's root by brentq.
     from scipy.optimize import brentq
 
     period = 2.0 * math.pi
 
     def f(tau: np.ndarray) -> np.ndarray:
-        return np.cos(tau) + rise * tau + jump * tau * tau * (tau - period) / period**2
+        ramp = rise * tau * (period - tau) / period
+        return np.cos(tau) + ramp + jump * tau * tau * (tau - period) / period**2
 
     def rate(tau: np.ndarray) -> np.ndarray:
-        return -np.sin(tau) + rise + jump * (3.0 * tau * tau - 2.0 * period * tau) / period**2
+        ramp = rise * (period - 2.0 * tau) / period
+        return -np.sin(tau) + ramp + jump * (3.0 * tau * tau - 2.0 * period * tau) / period**2
 
+    assert f(np.array(period)) == pytest.approx(1.0, abs=1e-15)
     peak = brentq(rate, 0.0, period / 256, xtol=1e-18)
     value, time = periodic_maximum(f, rate, period, 256)
     assert value == pytest.approx(float(f(np.array(peak))), rel=1e-15)
     assert time == pytest.approx(peak, rel=1e-9)
+
+
+@pytest.mark.parametrize("lean", [0.005, 0.01, 0.02])
+def test_a_peak_just_before_the_periods_end_takes_the_rates_left_limit(lean: float) -> None:
+    # g = cos τ + τ(T - τ)(α + β·τ)/T², T = 2π: g(0) = g(T), its rate α/T at 0⁺ and
+    # -(α + βT)/T at T⁻ (a jump). Two peaks, a hair after 0 and a hair before T, the
+    # second the higher (β > 0), within a sample step of T. Its bracket ends at T,
+    # where the rate must be the left limit: the right one (α/T > 0) has no sign
+    # change there and loses the peak. The truth: the rate's root by brentq.
+    from scipy.optimize import brentq
+
+    period, alpha, beta = 2.0 * math.pi, 0.01, lean
+
+    def g(tau: np.ndarray) -> np.ndarray:
+        return np.cos(tau) + tau * (period - tau) * (alpha + beta * tau) / period**2
+
+    def rate(tau: np.ndarray) -> np.ndarray:
+        shape = (period - 2.0 * tau) * (alpha + beta * tau) + tau * (period - tau) * beta
+        return -np.sin(tau) + shape / period**2
+
+    h = period / 256
+    peak = brentq(rate, period - h, period, xtol=1e-18)
+    assert g(np.array(peak)) > g(np.array(brentq(rate, 0.0, h, xtol=1e-18))) + 1e-6
+    value, time = periodic_maximum(g, rate, period, 256)
+    assert value == pytest.approx(float(g(np.array(peak))), rel=1e-15)
+    assert time == pytest.approx(peak, rel=1e-12)
+    # the same search with the rate's right limit at T misses it
+    wrong, _ = periodic_maximum(g, lambda tau: rate(tau % period), period, 256)
+    assert wrong < value - 1e-6
 
 
 def test_a_velocitys_peak_beside_the_loads_jump_is_found() -> None:
