@@ -375,6 +375,10 @@ def exact_block(system: RampSystem, size: int = 1) -> PeriodicBlock:
     )
 
 
+#: Newton steps at most that polish an eigenvalue of one or two coordinates.
+NEWTON_STEPS = 6
+
+
 def _modes(
     first: np.ndarray, mass: np.ndarray, damping: np.ndarray, stiffness: np.ndarray
 ) -> tuple[np.ndarray, np.ndarray]:
@@ -382,9 +386,10 @@ def _modes(
     throughout (an overdamped block's are all real, and numpy says so). A system of
     one or two coordinates takes its eigenvalues alone (eigvals) and each
     eigenvector as (x, λx), x the null vector of λ²M + λC + K: of one coordinate 1,
-    of two the larger row of that 2×2 turned a right angle (numpy's batched eig of
-    4×4 matrices costs 1.7 times its eigvals). Conjugate eigenvalues get conjugate
-    vectors, bit for bit."""
+    of two a row of that 2×2 turned a right angle, the one that leaves the other
+    row the least residual against its terms (numpy's batched eig of 4×4 matrices
+    costs 1.7 times its eigvals). Conjugate eigenvalues get conjugate vectors, bit
+    for bit."""
     n = mass.shape[-1]
     if n > 2:
         eigenvalues, vectors = np.linalg.eig(first)
@@ -400,11 +405,13 @@ def _modes(
     # Newton steps on det(λ²M + λC + K): eigvals has each λ to about ε·‖A‖, so a
     # slow mode of a stiff system only to ε·|λ_fast/λ_slow| of itself; a step
     # squares that (the determinant of at most 2×2 carries rounding of its terms'
-    # size only). Up to three steps, each taken only where it is under 1 % of λ; an
+    # size only). Up to NEWTON_STEPS, each taken only where it is under 1 % of λ; an
     # eigenvalue stops once its step is under 1e-14 of it (its own steps, whatever
-    # the block holds: a row alone gets the same digits).
+    # the block holds: a row alone gets the same digits). So |λ_fast/λ_slow| up to
+    # about 10¹² keeps the slow mode to its rounding (a review: 6.7·10⁻¹² at 10¹³);
+    # beyond 10¹³ or so eigvals' own first error is over 1 %, and it stays.
     going = np.ones(lam.shape, dtype=bool)
-    for _ in range(3):
+    for _ in range(NEWTON_STEPS):
         q, dq = pencil(lam)
         if n == 1:
             det, slope = q[..., 0, 0], dq[..., 0, 0]
@@ -428,10 +435,18 @@ def _modes(
         x = np.ones(lam.shape + (1,), dtype=complex)
     else:
         q = pencil(lam)[0]
-        rows = np.sum(np.abs(q) ** 2, axis=-1)  # (m, 4, 2): each row's size
-        row = np.where(rows[..., 0] >= rows[..., 1], 0, 1)[..., None, None]
-        larger = np.take_along_axis(q, np.broadcast_to(row, lam.shape + (1, 2)), axis=-2)
-        x = np.stack([larger[..., 0, 1], -larger[..., 0, 0]], axis=-1)
+        # Either row turned a right angle is a null vector; the other row's residual
+        # is |det| for both. The one chosen makes that residual the least against
+        # the other row's terms (|λ|²|M| + |λ||C| + |K|, what its rounding is of):
+        # the larger row outright can be mostly the rounding of λ² + k₁.
+        at = np.abs(lam)[..., None, None]
+        terms = at * at * np.abs(mass) + at * np.abs(damping) + np.abs(stiffness)
+        size = np.abs(q)
+        first_row = terms[..., 1, 0] * size[..., 0, 1] + terms[..., 1, 1] * size[..., 0, 0]
+        second_row = terms[..., 0, 0] * size[..., 1, 1] + terms[..., 0, 1] * size[..., 1, 0]
+        row = np.where(first_row >= second_row, 0, 1)[..., None, None]
+        chosen = np.take_along_axis(q, np.broadcast_to(row, lam.shape + (1, 2)), axis=-2)
+        x = np.stack([chosen[..., 0, 1], -chosen[..., 0, 0]], axis=-1)
     vectors = np.concatenate([x, lam[..., None] * x], axis=-1)  # (m, 2n modes, 2n)
     with np.errstate(all="ignore"):  # (a zero pencil, two modes alike: they meet)
         vectors = vectors / np.linalg.norm(vectors, axis=-1, keepdims=True)

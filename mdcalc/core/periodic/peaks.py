@@ -12,6 +12,8 @@ import numpy as np
 
 #: Regula falsi (Illinois) steps that locate a sampled peak on its slope.
 REGULA_FALSI_STEPS = 16
+#: Parts a bracket whose slope keeps its sign is scanned in for a peak.
+SCAN_STEPS = 16
 #: Samples per period of the fastest mode when searching for a maximum.
 SAMPLES_PER_MODE_PERIOD = 16
 MAX_SAMPLES = 2**20
@@ -149,6 +151,25 @@ def periodic_maxima(
         return rate(who, at[:, None])[:, 0]
 
     g_low, g_high = slope(low), slope(high)
+    # A bracket whose slope keeps its sign (a trough and then a peak within it, as
+    # where the rate jumps at τ = 0; two peaks close together) is scanned at
+    # SCAN_STEPS points, and its change from + to - of the highest value refined.
+    scan = np.flatnonzero(
+        ~((g_low > 0.0) & (g_high < 0.0)) & np.isfinite(g_low) & np.isfinite(g_high)
+    )
+    if scan.size:
+        parts = np.arange(SCAN_STEPS + 1) / SCAN_STEPS
+        at = low[scan, None] + (high - low)[scan, None] * parts
+        at[:, -1] = high[scan]
+        scanned = rows[owner[scan]]
+        g_scan, f_scan = rate(scanned, at), observe(scanned, at)
+        g_scan[:, 0], g_scan[:, -1] = g_low[scan], g_high[scan]
+        change = (g_scan[:, :-1] > 0.0) & (g_scan[:, 1:] < 0.0)
+        score = np.where(change, np.maximum(f_scan[:, :-1], f_scan[:, 1:]), -np.inf)
+        j, rooted = np.argmax(score, axis=1), change.any(axis=1)
+        pick, line, j = scan[rooted], np.flatnonzero(rooted), j[rooted]
+        low[pick], high[pick] = at[line, j], at[line, j + 1]
+        g_low[pick], g_high[pick] = g_scan[line, j], g_scan[line, j + 1]
     inside = (g_low > 0.0) & (g_high < 0.0)
     owner, low, high, p = owner[inside], low[inside], high[inside], p[inside]
     g_low, g_high = g_low[inside], g_high[inside]
