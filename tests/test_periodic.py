@@ -1232,15 +1232,15 @@ def _solve_wide(a: np.ndarray, b: np.ndarray) -> np.ndarray:
 
 
 @pytest.mark.skipif(
-    np.finfo(np.longdouble).nmant < 63, reason="np.longdouble is no wider than a double here"
+    np.finfo(np.longdouble).nmant < 63, reason="no extended precision here for the truth"
 )
 def test_the_modal_coordinates_are_the_loads_in_the_modes_as_computed() -> None:
     # coefficients·(1 - e^{λT})/T are the coordinates c of (b, 0) in the modes V as
     # computed (the state sums those). numpy's solve alone has them to cond(V)·ε
     # (stiff drives: cond(V) 10⁶–10⁷, 4e-7 of a velocity's range was lost); one step
-    # of refinement with an extended-precision residual has each to about the
-    # truth's own error. The truth: Gaussian elimination in extended precision (a
-    # 64-bit mantissa: cond(V)·5e-20, up to 1e-12 here; the solve alone: 1.3e-10)
+    # of refinement has each to about the truth's own error. The truth: Gaussian
+    # elimination in extended precision (a 64-bit mantissa: cond(V)·5e-20, up to
+    # 1e-12 here; the solve alone: 1.3e-10, refined: 1.1e-13)
     rng = np.random.default_rng(6)
     block = _wide_two_mass_block(rng, 200)
     rows = np.flatnonzero((block.failure == periodic.SOLVED) & ~block.meet)
@@ -1251,3 +1251,19 @@ def test_the_modal_coordinates_are_the_loads_in_the_modes_as_computed() -> None:
     error = np.abs(c - truth) / np.abs(truth).max(axis=-1, keepdims=True)
     assert len(rows) > 150
     assert error.max() < 1e-11, float(error.max())
+
+
+def test_a_flat_state_scans_no_bracket() -> None:
+    # every sample of a constant state ties: each is a candidate (up to 4096 a row)
+    # with slopes of 0 at its bracket's ends, which do not move the value; such a
+    # bracket is not scanned (it was, at 34 more evaluations each: a study of flat
+    # states took 20 times as long). The rate is evaluated at the brackets' ends only
+    evaluated = [0]
+
+    def rate(tau: np.ndarray) -> np.ndarray:
+        evaluated[0] += tau.size
+        return np.zeros_like(tau)
+
+    value, _ = periodic_maximum(lambda tau: np.full_like(tau, 3.0), rate, 1.0, 4096)
+    assert value == 3.0
+    assert evaluated[0] <= 2 * 4096 + 2

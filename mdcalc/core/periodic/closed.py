@@ -357,13 +357,12 @@ def exact_block(system: RampSystem, size: int = 1) -> PeriodicBlock:
     gap = np.where(modes[:, None], gap, 1.0)
     modal = np.linalg.solve(vectors, p1.astype(complex)[..., None])
     # The state sums the modes V as computed, so it wants the coordinates of (b, 0)
-    # in those: the solve alone loses up to cond(V)·ε of them (10⁶–10⁷ on stiff
-    # drives: 4·10⁻⁷ of a velocity's range seen). One step of refinement, its
-    # residual in extended precision (np.clongdouble: a 64-bit mantissa on x86-64;
-    # where it is a double, the step does little), takes that to about 10⁻¹¹.
-    wide = np.clongdouble
-    residual = p1.astype(wide)[..., None] - vectors.astype(wide) @ modal.astype(wide)
-    modal = (modal + np.linalg.solve(vectors, residual.astype(complex)))[..., 0]
+    # in those: the solve alone lost up to cond(V)·ε of them (cond(V) 10⁶–10⁷ on
+    # stiff drives, whose rows (x, λx) are scaled far apart: 4·10⁻⁷ of a velocity's
+    # range seen). One step of refinement, its residual in working precision, takes
+    # that to about 10⁻¹¹ (a review: an extended-precision residual does no better).
+    residual = p1.astype(complex)[..., None] - vectors @ modal
+    modal = (modal + np.linalg.solve(vectors, residual))[..., 0]
     coefficients = np.where(modes[:, None], t[:, None] * modal / gap, 0.0)
     matrix, origin = np.zeros_like(first), np.zeros_like(p1)
     basis = np.broadcast_to(np.eye(2 * n), first.shape).copy()

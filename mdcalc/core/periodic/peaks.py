@@ -153,9 +153,14 @@ def periodic_maxima(
     g_low, g_high = slope(low), slope(high)
     # A bracket whose slope keeps its sign (a trough and then a peak within it, as
     # where the rate jumps at τ = 0; two peaks close together) is scanned at
-    # SCAN_STEPS points, and its change from + to - of the highest value refined.
+    # SCAN_STEPS points, and its change from + to - of the highest value refined;
+    # not where its slopes move the value by less than 1e-12 of the row's size (a
+    # flat state, whose every sample ties: a resolved state with both end slopes
+    # that small is flat between them)
+    size = (np.abs(best_value) + 20.0 * margin)[owner]
+    moves = np.maximum(np.abs(g_low), np.abs(g_high)) * (high - low) > 1e-12 * size
     scan = np.flatnonzero(
-        ~((g_low > 0.0) & (g_high < 0.0)) & np.isfinite(g_low) & np.isfinite(g_high)
+        ~((g_low > 0.0) & (g_high < 0.0)) & np.isfinite(g_low) & np.isfinite(g_high) & moves
     )
     if scan.size:
         parts = np.arange(SCAN_STEPS + 1) / SCAN_STEPS
