@@ -1088,7 +1088,8 @@ def test_the_modes_are_eigenpairs_of_the_first_order_system(coordinates: int) ->
     damping = np.sqrt(scale) * 10 ** rng.uniform(-3, 1, (m, 1, 1)) * (q[2] @ q[2].swapaxes(-1, -2))
     system = RampSystem(mass, damping, stiffness, np.zeros((m, n)), np.ones((m, n)), 0.0, 1.0, 1.0)
     first = system.first_order()
-    lam, vectors = _modes(first, mass, damping, stiffness)
+    lam, vectors, sure = _modes(first, mass, damping, stiffness)
+    assert sure.all()
     assert lam.shape == (m, 2 * n) and vectors.shape == (m, 2 * n, 2 * n)
     size = np.linalg.norm(first, axis=(-2, -1), ord=2)[:, None]
     residual = np.linalg.norm(first @ vectors - vectors * lam[:, None, :], axis=-2)
@@ -1113,7 +1114,7 @@ def test_a_stiff_overdamped_modes_slow_eigenvalue_keeps_its_digits() -> None:
     stiffness = rng.uniform(1e3, 1e4, (m, 1, 1))
     damping = 10 ** rng.uniform(3, 5.5, (m, 1, 1)) * np.sqrt(mass * stiffness)
     first = RampSystem(mass, damping, stiffness, np.zeros((m, 1)), np.ones((m, 1)), 0.0, 1.0, 1.0)
-    lam, _ = _modes(first.first_order(), mass, damping, stiffness)
+    lam, _, _ = _modes(first.first_order(), mass, damping, stiffness)
     a, c, k = mass[:, 0, 0], damping[:, 0, 0], stiffness[:, 0, 0]
     q = -(c + np.sqrt(c * c - 4 * a * k)) / 2
     slow = lam[np.arange(m), np.argmin(np.abs(lam), axis=1)]
@@ -1124,7 +1125,7 @@ def test_a_stiff_overdamped_modes_slow_eigenvalue_keeps_its_digits() -> None:
     mass, stiffness = np.eye(2)[None], np.eye(2)[None]
     damping = np.diag([1e7, 1.03e7])[None]
     first = RampSystem(mass, damping, stiffness, np.zeros((1, 2)), np.ones((1, 2)), 0.0, 1.0, 1.0)
-    lam, _ = _modes(first.first_order(), mass, damping, stiffness)
+    lam, _, _ = _modes(first.first_order(), mass, damping, stiffness)
     c = np.array([1e7, 1.03e7])
     slow = np.sort(2.0 / -(c + np.sqrt(c * c - 4.0)))
     got = np.sort(lam[0].real[np.argsort(np.abs(lam[0]))[:2]])
@@ -1200,7 +1201,7 @@ def test_each_eigenvector_leaves_both_rows_of_the_pencil_their_rounding() -> Non
     stiffness[0] = [[2520753859994.562, -614.4527758652576], [-614.4527758652576, 14.0036384572427]]
     zero, one = np.zeros((size, 2)), np.ones((size, 2))
     system = RampSystem(mass, damping, stiffness, zero, one, 0.0, 1.0, 1.0)
-    lam, vectors = _modes(system.first_order(), mass, damping, stiffness)
+    lam, vectors, _ = _modes(system.first_order(), mass, damping, stiffness)
     at = lam[:, :, None, None]
     pencil = at * at * mass[:, None] + at * damping[:, None] + stiffness[:, None]
     terms = np.abs(at) ** 2 * np.abs(mass[:, None]) + np.abs(at) * np.abs(damping[:, None])
@@ -1267,3 +1268,26 @@ def test_a_flat_state_scans_no_bracket() -> None:
     value, _ = periodic_maximum(lambda tau: np.full_like(tau, 3.0), rate, 1.0, 4096)
     assert value == 3.0
     assert evaluated[0] <= 2 * 4096 + 2
+
+
+def test_modes_spread_beyond_double_precision_have_no_answer() -> None:
+    # two overdamped masses side by side, |λ_fast/λ_slow| = 10¹⁴, their slow roots 2 %
+    # apart: eigvals has them more than 1 % off, so Newton cannot start (a review saw
+    # them stay 0.7-1.7 % off, and the state with them, with no word said). Such a
+    # row has no answer; at 3 % apart Newton takes them to their rounding (above)
+    from mdcalc.core.periodic import SPREAD, Unresolved
+
+    def system(ratio: float) -> RampSystem:
+        damping = np.diag([1e7, 1e7 * ratio])
+        return RampSystem(
+            np.eye(2), damping, np.eye(2), np.array([0.0, 1.0]), np.array([1.0, 0.5]), 0.0, 1.0, 1e4
+        )
+
+    with pytest.raises(Unresolved, match="the modes spread from 9.87e-08 to 1.02e"):
+        exact_periodic(system(1.02))
+    stacked = [system(1.02), system(1.03)]
+    fields = ("mass", "damping", "stiffness", "constant", "shape", "start", "slope", "period")
+    block = periodic.exact_block(
+        RampSystem(*[np.stack([np.asarray(getattr(r, f)) for r in stacked]) for f in fields])
+    )
+    assert block.failure.tolist() == [SPREAD, periodic.SOLVED]

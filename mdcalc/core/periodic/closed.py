@@ -78,7 +78,7 @@ class Periodic:
 
 
 #: Why a row of a block has no exact periodic state (SOLVED: it has one).
-SOLVED, UNSEPARATED, AS_GOOD_AS_FREE, RESONANT = 0, 1, 2, 3
+SOLVED, UNSEPARATED, AS_GOOD_AS_FREE, RESONANT, SPREAD = 0, 1, 2, 3, 4
 
 
 @dataclass(frozen=True)
@@ -93,7 +93,7 @@ class PeriodicBlock:
     coefficients: np.ndarray  # d, (m, 2n) complex
     p0: np.ndarray  # (m, 2n)
     p1: np.ndarray  # (m, 2n)
-    failure: np.ndarray  # (m,) SOLVED, UNSEPARATED, AS_GOOD_AS_FREE or RESONANT
+    failure: np.ndarray  # (m,) SOLVED, UNSEPARATED, AS_GOOD_AS_FREE, RESONANT or SPREAD
     # rows whose eigenvalues meet, solved by e^{Bτ} (:class:`Periodic`): their B, d₀
     # and S (zeros and I elsewhere; the modal numbers of a row that meets mean nothing)
     meet: np.ndarray  # (m,) bool
@@ -331,7 +331,7 @@ def exact_block(system: RampSystem, size: int = 1) -> PeriodicBlock:
     p0 = np.concatenate([a, b], axis=-1)
     p1 = np.concatenate([b, np.zeros((m, n))], axis=-1)
     first = replace(system, mass=mass, damping=c, stiffness=k).first_order()
-    eigenvalues, vectors = _modes(first, mass, c, k)
+    eigenvalues, vectors, sure = _modes(first, mass, c, k)
     failure = np.where(broken, UNSEPARATED, SOLVED)
     # Eigenvalues that (nearly) meet -- a mode damped (nearly) critically -- have
     # (nearly) parallel eigenvectors, and the modal sum loses about ε/gap of the state
@@ -350,6 +350,10 @@ def exact_block(system: RampSystem, size: int = 1) -> PeriodicBlock:
     failure[(failure == SOLVED) & np.any(_resonant(gap, eigenvalues * t[:, None]), axis=-1)] = (
         RESONANT
     )
+    # modes spread so far (|λ_fast/λ_slow| beyond about 10¹³) that eigvals has the
+    # slow one over 1 % off and Newton cannot start from it: no answer here (where
+    # eigenvalues meet, e^{Aτ} is taken whole, and they only set the sampling)
+    failure[(failure == SOLVED) & ~meet & ~sure] = SPREAD
     solved = failure == SOLVED
     meet &= solved
     modes = solved & ~meet
@@ -388,9 +392,11 @@ NEWTON_STEPS = 6
 
 def _modes(
     first: np.ndarray, mass: np.ndarray, damping: np.ndarray, stiffness: np.ndarray
-) -> tuple[np.ndarray, np.ndarray]:
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Eigenvalues and unit eigenvectors of each row's first-order matrix A, complex
-    throughout (an overdamped block's are all real, and numpy says so). A system of
+    throughout (an overdamped block's are all real, and numpy says so), and whether
+    each row's eigenvalues are sure (a Newton step has come under 1e-8 of each;
+    numpy's eig: always). A system of
     one or two coordinates takes its eigenvalues alone (eigvals) and each
     eigenvector as (x, λx), x the null vector of λ²M + λC + K: of one coordinate 1,
     of two a row of that 2×2 turned a right angle, the one that leaves the other
@@ -400,7 +406,7 @@ def _modes(
     n = mass.shape[-1]
     if n > 2:
         eigenvalues, vectors = np.linalg.eig(first)
-        return eigenvalues.astype(complex), vectors.astype(complex)
+        return eigenvalues.astype(complex), vectors.astype(complex), np.ones(len(first), bool)
     lam = np.linalg.eigvals(first).astype(complex)  # (m, 2n)
     mass, damping, stiffness = mass[:, None], damping[:, None], stiffness[:, None]
 
@@ -416,8 +422,9 @@ def _modes(
     # eigenvalue stops once its step is under 1e-14 of it (its own steps, whatever
     # the block holds: a row alone gets the same digits). So |λ_fast/λ_slow| up to
     # about 10¹² keeps the slow mode to its rounding (a review: 6.7·10⁻¹² at 10¹³);
-    # beyond 10¹³ or so eigvals' own first error is over 1 %, and it stays.
+    # beyond 10¹³ or so eigvals' own first error is over 1 %: the row is not sure.
     going = np.ones(lam.shape, dtype=bool)
+    close = np.zeros(lam.shape, dtype=bool)  # a step has been under 1e-8 of λ
     for _ in range(NEWTON_STEPS):
         q, dq = pencil(lam)
         if n == 1:
@@ -435,6 +442,7 @@ def _modes(
             size = np.abs(step) / np.abs(lam)
         taken = going & np.isfinite(step) & (size <= 1e-2)
         lam = np.where(taken, lam - step, lam)
+        close |= taken & (size <= 1e-8)
         going = taken & (size > 1e-14)
         if not going.any():
             break
@@ -457,7 +465,7 @@ def _modes(
     vectors = np.concatenate([x, lam[..., None] * x], axis=-1)  # (m, 2n modes, 2n)
     with np.errstate(all="ignore"):  # (a zero pencil, two modes alike: they meet)
         vectors = vectors / np.linalg.norm(vectors, axis=-1, keepdims=True)
-    return lam, np.swapaxes(vectors, -1, -2)
+    return lam, np.swapaxes(vectors, -1, -2), np.all(close, axis=-1)
 
 
 #: Eigenvalues closer than this (relative to the larger) are solved by e^{Aτ}: the
@@ -490,6 +498,13 @@ def _failure(code: int, eigenvalues: np.ndarray, t: float) -> ArithmeticError:
     magnitudes = np.abs(eigenvalues)
     if code == UNSEPARATED:
         return Unresolved("a number of the system is not finite, or its period not positive")
+    if code == SPREAD:
+        return Unresolved(
+            f"the modes spread from {float(np.min(magnitudes)):.3g} to "
+            f"{float(np.max(magnitudes)):.3g} rad/s, a ratio of "
+            f"{float(np.max(magnitudes) / max(np.min(magnitudes), 1e-300)):.2g}: the slow "
+            "ones cannot be found to 8 digits in double precision; outside the range solved"
+        )
     if code == AS_GOOD_AS_FREE:
         slow = float(np.min(magnitudes)) * t
         return Unresolved(
