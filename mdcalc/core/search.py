@@ -24,3 +24,15 @@ def golden_maximum(f: Callable[[Any], Any], low: Any, high: Any, iterations: int
             f(a) > f(b), lambda low=low, b=b: (low, b), lambda a=a, high=high: (a, high)
         )
     return 0.5 * (low + high)
+
+
+def highest_fall(slopes: Any, values: Any) -> tuple[Any, Any]:
+    """Of each row's scan of a bracket (a function's slopes and values at its points,
+    (rows, points)), the step whose slope falls from + to - (or to 0) with the
+    highest value at its ends, where a peak lies: its index, and whether the row has
+    such a step."""
+    import numpy as np
+
+    change = (slopes[:, :-1] > 0.0) & (slopes[:, 1:] <= 0.0)
+    score = np.where(change, np.maximum(values[:, :-1], values[:, 1:]), -np.inf)
+    return np.argmax(score, axis=1), change.any(axis=1)

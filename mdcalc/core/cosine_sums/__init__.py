@@ -23,6 +23,7 @@ import numpy as np
 
 from mdcalc.core.cosine_sums import candidates
 from mdcalc.core.cosine_sums.samples import Sums
+from mdcalc.core.search import highest_fall
 
 
 @dataclass(frozen=True)
@@ -163,9 +164,7 @@ def maxima(
         g_scan[:, 0], g_scan[:, -1] = g_low[scan], g_high[scan]  # (a zero end's own sign)
         zero = np.zeros(len(scan))
         f_scan = np.stack([_sums(zero, bs, ws, at_scan[:, j]) for j in range(len(parts))], 1)
-        change = (g_scan[:, :-1] > 0.0) & (g_scan[:, 1:] <= 0.0)
-        score = np.where(change, np.maximum(f_scan[:, :-1], f_scan[:, 1:]), -np.inf)
-        j, rooted = np.argmax(score, axis=1), change.any(axis=1)
+        j, rooted = highest_fall(g_scan, f_scan)
         pick, line = scan[rooted], np.arange(len(scan))[rooted]
         low[pick], high[pick] = at_scan[line, j[rooted]], at_scan[line, j[rooted] + 1]
         g_low[pick], g_high[pick] = g_scan[line, j[rooted]], g_scan[line, j[rooted] + 1]

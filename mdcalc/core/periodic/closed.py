@@ -456,9 +456,9 @@ def _modes(
         # the larger row outright can be mostly the rounding of λ² + k₁.
         at = np.abs(lam)[..., None, None]
         terms = at * at * np.abs(mass) + at * np.abs(damping) + np.abs(stiffness)
-        size = np.abs(q)
-        first_row = terms[..., 1, 0] * size[..., 0, 1] + terms[..., 1, 1] * size[..., 0, 0]
-        second_row = terms[..., 0, 0] * size[..., 1, 1] + terms[..., 0, 1] * size[..., 1, 0]
+        entry = np.abs(q)
+        first_row = terms[..., 1, 0] * entry[..., 0, 1] + terms[..., 1, 1] * entry[..., 0, 0]
+        second_row = terms[..., 0, 0] * entry[..., 1, 1] + terms[..., 0, 1] * entry[..., 1, 0]
         row = np.where(first_row >= second_row, 0, 1)[..., None, None]
         chosen = np.take_along_axis(q, np.broadcast_to(row, lam.shape + (1, 2)), axis=-2)
         x = np.stack([chosen[..., 0, 1], -chosen[..., 0, 0]], axis=-1)

@@ -10,6 +10,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from mdcalc.core.search import highest_fall
+
 #: Regula falsi (Illinois) steps that locate a sampled peak on its slope.
 REGULA_FALSI_STEPS = 16
 #: Parts a bracket whose slope keeps its sign is scanned in for a peak.
@@ -169,9 +171,7 @@ def periodic_maxima(
         scanned = rows[owner[scan]]
         g_scan, f_scan = rate(scanned, at), observe(scanned, at)
         g_scan[:, 0], g_scan[:, -1] = g_low[scan], g_high[scan]
-        change = (g_scan[:, :-1] > 0.0) & (g_scan[:, 1:] < 0.0)
-        score = np.where(change, np.maximum(f_scan[:, :-1], f_scan[:, 1:]), -np.inf)
-        j, rooted = np.argmax(score, axis=1), change.any(axis=1)
+        j, rooted = highest_fall(g_scan, f_scan)
         pick, line, j = scan[rooted], np.flatnonzero(rooted), j[rooted]
         low[pick], high[pick] = at[line, j], at[line, j + 1]
         g_low[pick], g_high[pick] = g_scan[line, j], g_scan[line, j + 1]
