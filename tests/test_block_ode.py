@@ -108,3 +108,60 @@ def test_stop_and_failure_are_per_row():
     assert run.done.tolist() == [False, False, False, False, True]
     assert run.y[4, 0] == pytest.approx(4.0, abs=1e-12)  # 9 - 5, exact for a constant slope
     assert np.all(run.y[:3, 0] <= 0.0)  # each stopped just past its crossing
+
+
+def test_a_row_at_its_end_is_done_whatever_its_slope_there():
+    # A caller running pieces in lockstep passes rows already at their end with
+    # whatever right-hand side the piece has for them: they are done, not failed.
+    def rhs(rows, t, y):
+        return np.where(rows[:, None] == 1, np.nan, -y)
+
+    run = dop853_block(rhs, np.zeros(3), np.ones((3, 1)), np.array([1.0, 0.0, 1.0]), rtol=1e-9,
+                       atol=1e-12)  # fmt: skip
+    assert run.done.tolist() == [True, True, True]
+    assert not run.failed.any()
+    assert run.y[1, 0] == 1.0 and run.y[0, 0] == pytest.approx(math.exp(-1.0), rel=1e-8)
+
+
+def test_a_run_goes_on_with_the_step_the_last_one_proposed():
+    # The pendulums of the tests above run in 100 pieces, shorter than their steps
+    # (as a table's pieces are), each taken up where the last ended with the step it
+    # proposed: fewer evaluations than pieces started afresh, each of which picks an
+    # initial step again (two evaluations, and a cautious step), and as exact.
+    y0 = np.tile([1.0, 0.0], (5, 1))
+    cuts = [ENDS * k / 100 for k in range(101)]
+    carried, fresh = y0, y0
+    proposal = None
+    cost_carried, cost_fresh = np.zeros(5), np.zeros(5)
+    for low, high in zip(cuts, cuts[1:], strict=False):
+        run = dop853_block(_rhs, low, carried, high, rtol=1e-10, atol=1e-13, first_step=proposal)
+        carried, proposal, cost_carried = run.y, run.step, cost_carried + run.evaluations
+        again = dop853_block(_rhs, low, fresh, high, rtol=1e-10, atol=1e-13)
+        fresh, cost_fresh = again.y, cost_fresh + again.evaluations
+    for row in range(5):
+        tight = _scipy(row, 1e-13, 1e-16)
+        scale = np.abs(tight.y[:, -1]).max()
+        assert np.abs(carried[row] - tight.y[:, -1]).max() < 1e-8 * scale
+    assert np.all(cost_carried < cost_fresh)
+
+
+def test_a_quadrature_is_not_read_and_its_stages_not_formed():
+    # y₀' = -k·sin y₀ ... (the pendulum) and y₂ = ∫ y₀² dt beside it: with
+    # quadratures=1 the right-hand side sees two components, and the run is the
+    # one that forms all three, bit for bit (the stages of y₂ feed nothing).
+    seen = []
+
+    def rhs(rows, t, y):
+        seen.append(y.shape[1])
+        return np.concatenate([_rhs(rows, t, y[:, :2]), y[:, :1] ** 2], axis=1)
+
+    y0 = np.tile([1.0, 0.0, 0.0], (5, 1))
+    full = dop853_block(rhs, np.zeros(5), y0, ENDS, rtol=1e-10, atol=1e-13)
+    seen.clear()
+    lean = dop853_block(rhs, np.zeros(5), y0, ENDS, rtol=1e-10, atol=1e-13, quadratures=1)
+    assert set(seen) == {2}
+    assert np.array_equal(full.y, lean.y) and np.array_equal(full.evaluations, lean.evaluations)
+    step = []
+    dop853_block(rhs, np.zeros(5), y0, ENDS, rtol=1e-10, atol=1e-13, quadratures=1,
+                 on_step=lambda s: step.append(s.dense().at(s.t_new, 2)))  # fmt: skip
+    assert set(seen) == {2}  # the continuous extension's stages as well

@@ -56,10 +56,14 @@ class Dense:
     def at(self, t: Any, component: int) -> Any:
         """One component at ``t``: shape (m,), or (k, m) for k points a row."""
         x = (t - self.t_old) / self.h
+        rest = 1.0 - x
         y = np.zeros(np.shape(x))
-        for i, f in enumerate(reversed(self.F[:, :, component])):
-            y = (y + f) * (x if i % 2 == 0 else 1.0 - x)
-        return y + self.y_old[:, component]
+        F = np.ascontiguousarray(self.F[:, :, component])  # rows next to each other
+        for i, f in enumerate(F[::-1]):
+            y += f  # in place: (y + f)·x, the same rounding, no temporaries
+            y *= x if i % 2 == 0 else rest
+        y += self.y_old[:, component]
+        return y
 
     def crossing(self, component: int, level: Any, iterations: int = 56) -> Any:
         """t where the component rises through ``level`` in the step (it is below at
@@ -91,6 +95,7 @@ class Step:
     f_new: Any
     K: Any  # (13, m, d) stages
     rhs: BlockRhs
+    inputs: int | None = None  # the components rhs reads (None: all)
     _dense: Dense | None = field(default=None, repr=False)
 
     def dense(self) -> Dense:
@@ -102,7 +107,8 @@ class Step:
             K[:13] = self.K
             for s, (a, c) in enumerate(zip(tableau.A_EXTRA, tableau.C_EXTRA, strict=True), 13):
                 dy = _combine(a[:s], K[:s]) * h
-                K[s] = self.rhs(self.rows, self.t_old + c * h[:, 0], self.y_old + dy)
+                y = (self.y_old + dy)[:, : self.inputs]
+                K[s] = self.rhs(self.rows, self.t_old + c * h[:, 0], y)
             delta = self.y_new - self.y_old
             F = np.empty((7, m, d))
             F[0] = delta
@@ -122,6 +128,7 @@ class BlockRun:
     stopped: Any  # bool: its stop test ended it
     failed: Any  # bool: not finite, too small a step, or over the budget
     evaluations: Any  # int (n,)
+    step: Any  # (n,) the step size each row's control proposes next
 
 
 def _squares(x: Any) -> Any:
@@ -133,6 +140,15 @@ def _squares(x: Any) -> Any:
     return total
 
 
+def _finite(x: Any) -> Any:
+    """The rows of x (m, d) whose every component is finite (a column at a time:
+    a reduction along a short axis is slow)."""
+    ok = np.isfinite(x[:, 0])
+    for j in range(1, x.shape[1]):
+        ok &= np.isfinite(x[:, j])
+    return ok
+
+
 def _rms(x: Any) -> Any:
     return np.sqrt(_squares(x) / x.shape[1])
 
@@ -140,11 +156,16 @@ def _rms(x: Any) -> Any:
 def _combine(weights: Any, K: Any) -> Any:
     """Σ_j weights[j]·K[j] in index order, zero weights skipped: elementwise, so a
     row's value is the same in a block of any size."""
-    total = np.zeros(K.shape[1:])
+    total, term = None, None
     for w, k in zip(weights.tolist(), K, strict=False):
-        if w != 0.0:
-            total += w * k
-    return total
+        if w == 0.0:
+            continue
+        if total is None:
+            total = w * k
+            term = np.empty_like(total)
+        else:
+            total += np.multiply(w, k, out=term)
+    return np.zeros(K.shape[1:]) if total is None else total
 
 
 def dop853_block(
@@ -159,6 +180,8 @@ def dop853_block(
     on_step: Callable[[Step], None] | None = None,
     budget: Any = 100_000,
     dense_counted: bool = False,
+    first_step: Any = None,
+    quadratures: int = 0,
 ) -> BlockRun:
     """Integrate dy/dt = rhs from ``t0`` to ``t1`` (arrays of shape (n,)), y of
     shape (n, d), ``atol`` of shape (n, d) or broadcastable. ``stop(step)`` marks the
@@ -168,7 +191,11 @@ def dop853_block(
     them: 2 at the start, 12 a step tried, and with ``dense_counted`` 3 more a step
     taken (solve_ivp with ``dense_output``, which builds the extension after every
     step) whether or not this caller asks for the extension: a row's count never
-    depends on other rows."""
+    depends on other rows. ``first_step`` (n,) replaces scipy's initial step (one
+    evaluation at the start, not two): a run that goes on from where another ended
+    passes that run's :attr:`BlockRun.step`, the size its control proposed next.
+    The last ``quadratures`` components are integrals that ``rhs`` does not read:
+    it is given y without them, and their stages are not formed."""
     from mdcalc.core import budget as time_budget
 
     tableau = _tableau()
@@ -179,47 +206,46 @@ def dop853_block(
     y = np.array(y0, dtype=float, copy=True)
     atol = np.broadcast_to(np.asarray(atol, dtype=float), (n, d))
     everyone = np.arange(n)
-    evaluations = np.full(n, 2, dtype=np.int64)
     limit = np.broadcast_to(np.asarray(budget), (n,))  # one for all rows, or each its own
-    f = rhs(everyone, t, y)
-    # scipy's select_initial_step, row by row
-    scale = atol + np.abs(y) * rtol
-    d0, d1 = _rms(y / scale), _rms(f / scale)
-    h0 = np.where((d0 < 1e-5) | (d1 < 1e-5), 1e-6, 0.01 * d0 / np.where(d1 > 0, d1, 1.0))
-    h0 = np.minimum(h0, t1 - t)
-    f1 = rhs(everyone, t + h0, y + h0[:, None] * f)
-    d2 = _rms((f1 - f) / scale) / np.where(h0 > 0, h0, 1.0)
-    with np.errstate(divide="ignore"):
-        h1 = np.where(
-            (d1 <= 1e-15) & (d2 <= 1e-15),
-            np.maximum(1e-6, h0 * 1e-3),
-            (0.01 / np.maximum(d1, d2)) ** (1.0 / 8.0),
-        )
-    h_abs = np.minimum(np.minimum(100.0 * h0, h1), t1 - t)
+    inputs = d - quadratures
+    f = rhs(everyone, t, y[:, :inputs])
+    if first_step is not None:
+        evaluations = np.full(n, 1, dtype=np.int64)
+        h_abs = np.minimum(np.asarray(first_step, dtype=float), t1 - t)
+    else:
+        evaluations = np.full(n, 2, dtype=np.int64)
+        h_abs = _initial_step(rhs, everyone, t, y, f, t1, rtol, atol, inputs)
     rejected = np.zeros(n, dtype=bool)
-    failed = ~(np.isfinite(f).all(axis=1) & np.isfinite(h_abs) & np.isfinite(y).all(axis=1))
+    # a row already at its end is done whatever its derivative there
+    failed = ~(_finite(f) & np.isfinite(h_abs) & _finite(y)) & (t < t1)
     stopped = np.zeros(n, dtype=bool)
     live = (t < t1) & ~failed
     while live.any():
         time_budget.check()
         rows = np.flatnonzero(live)
-        tr, yr, fr, hr, again = t[rows], y[rows], f[rows], h_abs[rows], rejected[rows]
+        whole = rows.size == n  # every row steps: copies, not gathers
+        sel = slice(None) if whole else rows  # a view of every row, or a gather
+        tr, yr, fr = (t.copy(), y.copy(), f.copy()) if whole else (t[rows], y[rows], f[rows])
+        hr, again = h_abs[sel], rejected[sel].copy()
         min_step = 10.0 * np.abs(np.nextafter(tr, np.inf) - tr)
         hr = np.where(again, hr, np.maximum(hr, min_step))
         tiny = again & (hr < min_step)
-        t_new = np.minimum(tr + hr, t1[rows])
+        planned = hr
+        t_new = np.minimum(tr + hr, t1[sel])
         hr = t_new - tr  # the step taken, as scipy's h_abs after the end clips it
         h = hr[:, None]
         K = np.empty((13, rows.size, d))
         K[0] = fr
         with np.errstate(all="ignore"):
             for s in range(1, 12):
-                dy = _combine(A[s, :s], K[:s]) * h
-                K[s] = rhs(rows, tr + C[s] * h[:, 0], yr + dy)
+                dy = _combine(A[s, :s], K[:s, :, :inputs])
+                dy *= h
+                dy += yr[:, :inputs]  # y + h·Σ a·K, in that order
+                K[s] = rhs(rows, tr + C[s] * h[:, 0], dy)
             y_new = yr + h * _combine(B, K[:12])
-            f_new = rhs(rows, t_new, y_new)
+            f_new = rhs(rows, t_new, y_new[:, :inputs])
             K[12] = f_new
-            scale = atol[rows] + np.maximum(np.abs(yr), np.abs(y_new)) * rtol
+            scale = atol[sel] + np.maximum(np.abs(yr), np.abs(y_new)) * rtol
             err5 = _squares(_combine(E5, K) / scale)
             err3 = _squares(_combine(E3, K) / scale)
             both_zero = (err5 == 0.0) & (err3 == 0.0)
@@ -229,21 +255,25 @@ def dop853_block(
                 h[:, 0] * err5 / np.sqrt(np.where(both_zero, 1.0, err5 + 0.01 * err3) * d),
             )
             grow = SAFETY * error**EXPONENT
-        evaluations[rows] += 12
+        counted = evaluations[sel] + 12  # a new array
         if dense_counted:
-            evaluations[rows] += np.where((error < 1.0) & np.isfinite(error), 3, 0)
-        bad = tiny | ~np.isfinite(error) | ~np.isfinite(y_new).all(axis=1)
-        bad |= ~np.isfinite(f_new).all(axis=1) | (evaluations[rows] > limit[rows])
+            counted += np.where((error < 1.0) & np.isfinite(error), 3, 0)
+        evaluations[sel] = counted
+        bad = tiny | ~np.isfinite(error) | ~_finite(y_new)
+        bad |= ~_finite(f_new) | (counted > limit[sel])
         accept = (error < 1.0) & ~bad
         factor = np.where(error == 0.0, MAX_FACTOR, np.minimum(MAX_FACTOR, grow))
         factor = np.where(again, np.minimum(1.0, factor), factor)
-        h_abs[rows] = np.where(accept, hr * factor, hr * np.maximum(MIN_FACTOR, grow))
-        rejected[rows] = ~accept
-        failed[rows] |= bad
+        proposed = hr * factor
+        # a last step cut short by the end proposes what its row had planned, at least
+        proposed = np.where(t_new >= t1[sel], np.maximum(proposed, planned), proposed)
+        h_abs[sel] = np.where(accept, proposed, hr * np.maximum(MIN_FACTOR, grow))
+        rejected[sel] = ~accept
+        failed[sel] |= bad
         took = np.flatnonzero(accept)
         if took.size == rows.size:  # every row took its step: no copies
             at = rows
-            step = Step(at, tr, t_new, yr, y_new, fr, f_new, K, rhs)
+            step = Step(at, tr, t_new, yr, y_new, fr, f_new, K, rhs, inputs)
         elif took.size:
             at = rows[took]
             step = Step(
@@ -256,12 +286,43 @@ def dop853_block(
                 f_new[took],
                 K[:, took],
                 rhs,
+                inputs,
             )
         if took.size:
             if on_step is not None:
                 on_step(step)
             if stop is not None:
                 stopped[at] = stop(step)
-            t[at], y[at], f[at] = t_new[took], y_new[took], f_new[took]
+            if whole and took.size == n:
+                t[:], y[:], f[:] = t_new, y_new, f_new
+            else:
+                t[at], y[at], f[at] = t_new[took], y_new[took], f_new[took]
         live = (t < t1) & ~failed & ~stopped
-    return BlockRun(t, y, (t >= t1) & ~failed & ~stopped, stopped, failed, evaluations)
+    return BlockRun(t, y, (t >= t1) & ~failed & ~stopped, stopped, failed, evaluations, h_abs)
+
+
+def _initial_step(
+    rhs: BlockRhs,
+    rows: Any,
+    t: Any,
+    y: Any,
+    f: Any,
+    t1: Any,
+    rtol: float,
+    atol: Any,
+    inputs: int,
+) -> Any:
+    """scipy's ``select_initial_step``, row by row (one more evaluation)."""
+    scale = atol + np.abs(y) * rtol
+    d0, d1 = _rms(y / scale), _rms(f / scale)
+    h0 = np.where((d0 < 1e-5) | (d1 < 1e-5), 1e-6, 0.01 * d0 / np.where(d1 > 0, d1, 1.0))
+    h0 = np.minimum(h0, t1 - t)
+    f1 = rhs(rows, t + h0, (y + h0[:, None] * f)[:, :inputs])
+    d2 = _rms((f1 - f) / scale) / np.where(h0 > 0, h0, 1.0)
+    with np.errstate(divide="ignore"):
+        h1 = np.where(
+            (d1 <= 1e-15) & (d2 <= 1e-15),
+            np.maximum(1e-6, h0 * 1e-3),
+            (0.01 / np.maximum(d1, d2)) ** (1.0 / 8.0),
+        )
+    return np.minimum(np.minimum(100.0 * h0, h1), t1 - t)
