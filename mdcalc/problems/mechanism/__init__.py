@@ -33,6 +33,10 @@ Its files:
 - ``fluctuation.py``: The speed fluctuation over a period: coefficient of unevenness, extremes.
 - ``kernel.py``: The vectorized kernel of sweeps and studies: the reference, the
   fluctuation and Kovylin's (5) over a block of scenes.
+- ``pieces.py``: The right-hand side of a mechanism's block on one piece between the tables'
+  knots: there I and every speed column of M are straight lines.
+- ``extremes.py``: The extremes of ω over a mechanism block's last revolution, from the
+  reference's steps as they are taken.
 - ``solve.py``: The solver: the Methods, and the result.
 - ``report.py``: The report: the sections a mechanism scene needs.
 - ``charts.py``: The charts of ``--plot``: speed and torque against the angle (data only).

@@ -11,6 +11,10 @@ from mdcalc.problems.mechanism.kovylin import Path
 from mdcalc.problems.mechanism.reference import Reference
 from mdcalc.problems.mechanism.scene import Scene
 
+#: Points of the grid over the last revolution where the extremes of ω are sought
+#: (each then refined by golden section between its neighbours).
+GRID_POINTS = 2048
+
 
 @dataclass(frozen=True)
 class Fluctuation:
@@ -63,7 +67,7 @@ def fluctuation_of_reference(scene: Scene, ref: Reference) -> Fluctuation | None
     first = end - TWO_PI
     if first < scene.start_angle - 1e-9:
         return None
-    samples = 2048
+    samples = GRID_POINTS
     grid = [first + TWO_PI * k / samples for k in range(samples + 1)]
     speeds = ref.speeds_at(grid)
 

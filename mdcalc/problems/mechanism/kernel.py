@@ -6,16 +6,19 @@ The reference is the single scene's: the energy equation dE/dφ = M, dt/dφ = 1/
 integrated by DOP853 at rtol 10⁻¹¹ with the same tolerances, start from rest and
 floor (:func:`~.reference.reference`), here stepped for every row at once by
 :func:`mdcalc.core.block_ode.dop853_block`. The speed fluctuation takes the extremes of
-ω over the last revolution from DOP853's continuous extension, each sampled at nine
-points a step and refined by golden section, as the single scene refines its
-2048-point grid. Kovylin's (5) runs as :func:`~.kovylin.kovylin` does, node by node
-with each row's own halving, on the same step formula.
+ω over the last revolution from DOP853's continuous extension (:mod:`~.extremes`),
+sampled at least as closely as the single scene's grid and refined by golden
+section. Kovylin's (5) runs as :func:`~.kovylin.kovylin` does, node by node with
+each row's own halving, on the same step formula.
 
 A row the single scene would run otherwise is marked ``DECLINED``, to be solved
 alone: a stiff scene (Radau), a stall, a formula that cannot be evaluated along the
 run, more than the explicit budget of evaluations. With tables the reference runs
 from knot to knot, as the single one does: every row's knots in one sorted array,
-each row stepping through its own.
+each row stepping through its own. Each piece goes on with the step the last one
+proposed (the single scene starts each afresh), and with tables of both M and I (or
+a constant I) its right-hand side is the piece's lines (:mod:`~.pieces`): the two
+runs then take different steps and agree within their tolerance.
 """
 
 from __future__ import annotations
@@ -28,7 +31,9 @@ from mdcalc.core.units import rpm_to_rad_s
 from mdcalc.input.expr import parse
 from mdcalc.input.model import in_tiles, kernel_answer, value_at, with_values
 from mdcalc.problems.mechanism.case import TWO_PI, VARIABLES, Case
+from mdcalc.problems.mechanism.extremes import FLUCTUATION_KEYS, Extremes, speed
 from mdcalc.problems.mechanism.kovylin import MAX_REFINEMENT, kovylin_step
+from mdcalc.problems.mechanism.pieces import Lines
 from mdcalc.problems.mechanism.scene import (
     PeriodicRows,
     Scene,
@@ -52,8 +57,8 @@ SWEEP_KEYS = {
     "inertia.values.N": "I at an angle of the table",
 }
 
-#: The reference is an ODE run at rtol 10⁻¹¹ (DOP853, as the single scene's). The
-#: kernel takes the single run's steps up to rounding, but where the error estimate
+#: The reference is an ODE run at rtol 10⁻¹¹ (DOP853, as the single scene's). Without
+#: tables the kernel takes the single run's steps up to rounding, but where the error estimate
 #: is itself at rounding level (a kink of M each revolution, as crank_press.toml's
 #: max(sin φ, 0); E near zero before a stall) the two runs step differently and
 #: differ by the reference's own error: measured 5.6·10⁻⁷ of ω against the exact
@@ -75,11 +80,6 @@ ODE_REFERENCED: dict[str, float | tuple[float, float]] = {
 #: reference's own error, 10⁻⁶ absolute (with 10⁻⁶ relative).
 ODE_REFERENCED["kovylin_worst_error"] = (1e-6, 1e-6)
 
-#: Points of each step's continuous extension where the extremes of ω are sought.
-SAMPLES_A_STEP = 8
-#: Golden-section iterations of an extreme, as the single scene's.
-GOLDEN_ITERATIONS = 60
-
 #: Kovylin's nodes × rows of a block at most (a node array of 32 MB), and rows at
 #: most (the reference's arrays stay in the cache: 16 384 rows of
 #: mechanism_inertia.toml run at 1.3x the rate of 65 536): a block of more rows runs
@@ -87,7 +87,6 @@ GOLDEN_ITERATIONS = 60
 NODE_CELLS = 4_000_000
 TILE_ROWS = 16_384
 
-FLUCTUATION_KEYS = ("max_speed", "min_speed", "mean_speed_revolution", "fluctuation")
 KOVYLIN_KEYS = ("kovylin_final_speed", "kovylin_worst_error")
 
 
@@ -108,6 +107,7 @@ class _Formulas:
             None if i.formula is None else parse(i.formula, ("phi",), case.parameters).on_arrays()
         )
         self.depends = t.speeds is not None if self.torque is None else self.torque.uses("omega")
+        self.case_speeds = None if t.speeds is None else list(t.speeds)
         self.torque_table: Any = None
         self.slope_table: Any = None
         self.inertia_table: Any = None
@@ -326,7 +326,7 @@ def _reference(formulas: _Formulas, base: Any, fluctuation: bool, nodes: bool) -
 
     t_scale = span / np.maximum(omega0, np.sqrt(2.0 * e_scale / i0))
     atol = np.stack([e_scale, t_scale], axis=1) * REFERENCE_RTOL * 1e-3
-    extremes = _Extremes(formulas, base, end - TWO_PI, end, start) if fluctuation else None
+    extremes = Extremes(formulas, base, end - TWO_PI, end, start) if fluctuation else None
     at_nodes = _Nodes(base, start, formulas) if nodes else None
     y0 = np.stack([e_start, t_offset], axis=1)
     live = ~declined
@@ -343,11 +343,18 @@ def _reference(formulas: _Formulas, base: Any, fluctuation: bool, nodes: bool) -
     used = np.zeros(n, dtype=np.int64)
     moving = live.copy()
     knots, first, count = _knots(base.breaks, start, end)
+    across = count < 0  # rows that run across their knots
+    count = np.maximum(count, 0)
+    proposal = None  # the first piece's step is scipy's; each next one goes on
+    tables = formulas.torque_table is not None and formulas.inertia_formula is None
+    tables &= bool(base.breaks) and not across.any()
+    lines = Lines(formulas, base, base.breaks) if tables else None
     for piece in range(int(np.max(count, initial=0)) + 1):
         inside = piece < count
-        stage = np.where(inside, knots[np.minimum(first + piece, len(knots) - 1)], end)
+        index = np.minimum(first + piece, len(knots) - 1)
+        stage = np.where(inside, knots[index], end)
         out = dop853_block(
-            rhs,
+            rhs if lines is None else lines.piece(knots, index, t, floor),
             np.where(moving, t, stage),
             np.where(moving[:, None], y, np.array([1.0, 0.0])),
             stage,
@@ -357,7 +364,10 @@ def _reference(formulas: _Formulas, base: Any, fluctuation: bool, nodes: bool) -
             on_step=on_step,
             budget=EXPLICIT_BUDGET - used,
             dense_counted=True,  # the single reference keeps its dense solution
+            first_step=proposal,
+            quadratures=1,  # t is an integral: dE/dφ does not read it
         )
+        proposal = np.where(moving, out.step, 1.0)
         used += out.evaluations
         t, y = np.where(moving, out.t, t), np.where(moving[:, None], out.y, y)
         moving &= out.done
@@ -390,11 +400,13 @@ def _knots(breaks: tuple[float, ...], start: Any, end: Any) -> tuple[Any, Any, A
 
     if not breaks:
         return np.zeros(1), np.zeros(np.shape(start), dtype=np.int64), np.zeros(np.shape(start))
-    turns = range(int(np.floor(np.min(start) / TWO_PI)), int(np.ceil(np.max(end) / TWO_PI)) + 1)
+    # from a turn before the first start: every piece has a knot below it
+    turns = range(int(np.floor(np.min(start) / TWO_PI)) - 1, int(np.ceil(np.max(end) / TWO_PI)) + 2)
     knots = np.array([turn * TWO_PI + b for turn in turns for b in breaks])
     first = np.searchsorted(knots, start + 1e-12 * TWO_PI, side="right")
     count = np.searchsorted(knots, end - 1e-12 * TWO_PI, side="left") - first
-    return knots, first, np.where(count > MAX_SEGMENTS, 0, count)
+    # past MAX_SEGMENTS a row runs across its knots, as the single reference
+    return knots, first, np.where(count > MAX_SEGMENTS, -1, count)
 
 
 def _stiffness(scene: Scene, base: Any, i0: Any, m0: Any, span: Any) -> Any:
@@ -437,22 +449,22 @@ class _Nodes:
             due = (k <= self.count[rows]) & (angle <= step.t_new)
             if not due.any():
                 return
-            at = np.flatnonzero(due)
-            r = rows[at]
-            self.speeds[k[at], r] = _speed(
-                self.formulas, base, self.start, r, step.dense().take(at), angle[at]
-            )
-            self.next[r] += 1
-
-
-def _speed(formulas: _Formulas, base: Any, start: Any, rows: Any, dense: Any, angle: Any) -> Any:
-    """ω = √(2E/I) of the reference at ``angle`` (shape (m,) or (k, m)), as the
-    single scene's ``speed_at``: ω₀ up to its (shifted) start."""
-    import numpy as np
-
-    energy = np.maximum(dense.at(angle, 0), 0.0)
-    omega = np.sqrt(2.0 * energy / formulas.scene(rows, base).inertia(angle))
-    return np.where(angle <= start[rows], base.start_speed[rows], omega)
+            # a node at the step's end (a table's knot, within rounding) is its end
+            # point; one inside the step is read from the step's extension
+            end = due & (np.abs(angle - step.t_new) <= 1e-12 * TWO_PI)
+            at = np.flatnonzero(end)
+            if at.size:
+                r = rows[at]
+                energy = np.maximum(step.y_new[at, 0], 0.0)
+                inertia = self.formulas.scene(r, base).inertia(step.t_new[at])
+                self.speeds[k[at], r] = np.sqrt(2.0 * energy / inertia)
+            at = np.flatnonzero(due & ~end)
+            if at.size:
+                r = rows[at]
+                self.speeds[k[at], r] = speed(
+                    self.formulas, base, self.start, r, step.dense().take(at), angle[at]
+                )
+            self.next[rows[due]] += 1
 
 
 def _node_grid(base: Any) -> tuple[Any, Any]:
@@ -497,182 +509,3 @@ def _kovylin(formulas: _Formulas, base: Any) -> tuple[Any, Any]:
         phi = np.where(moving, end, phi)
         speeds[k + 1] = np.where(moving & ~failed, omega, np.nan)
     return speeds, failed
-
-
-class _Best:
-    """The running extreme of ω (``sign`` +1 the largest, -1 the smallest) over the
-    sampled points, with the step that holds it and that step's neighbours."""
-
-    def __init__(self, n: int, sign: float) -> None:
-        import numpy as np
-
-        self.sign = sign
-        self.value = np.full(n, np.nan)
-        self.angle = np.full(n, np.nan)
-        self.width = np.full(n, np.nan)
-        self.pieces: dict[str, Any] = {}
-        self.waits = np.zeros(n, dtype=bool)  # for the step after the best one
-
-    def _store(self, which: str, rows: Any, dense: Any) -> None:
-        _keep(self.pieces, which, self.value.size, rows, dense)
-
-    def fill_next(self, rows: Any, here: Any) -> None:
-        import numpy as np
-
-        waiting = np.flatnonzero(self.waits[rows])
-        if waiting.size:
-            self._store("next", rows[waiting], here.take(waiting))
-            self.waits[rows[waiting]] = False
-
-    def offer(self, rows: Any, omega: Any, angles: Any, width: Any, here: Any, last: Any) -> None:
-        import numpy as np
-
-        index = np.argmax(self.sign * omega, axis=0)
-        m = np.arange(rows.size)
-        candidate = omega[index, m]
-        current = self.value[rows]
-        better = np.isnan(current) | (self.sign * candidate > self.sign * current)
-        at = np.flatnonzero(better)
-        if not at.size:
-            return
-        r = rows[at]
-        self.value[r], self.angle[r] = candidate[at], angles[index[at], at]
-        self.width[r] = width[at]
-        self._store("best", r, here.take(at))
-        if "last" in last.pieces:
-            self._store("previous", r, last.pieces["last"].take(r))
-        self.waits[r] = True
-
-    def around(self, rows: Any, angle: Any) -> Any:
-        """The extension that holds ``angle`` of each row: the best step's, or a
-        neighbour's just outside it."""
-        import numpy as np
-
-        from mdcalc.core.block_ode import Dense
-
-        best = self.pieces["best"].take(rows)
-        chosen = best
-        for which, outside in (
-            ("previous", angle < best.t_old),
-            ("next", angle > best.t_old + best.h),
-        ):
-            if which not in self.pieces:
-                continue
-            other = self.pieces[which].take(rows)
-            use = outside & np.isfinite(other.h)
-            chosen = Dense(
-                np.where(use, other.t_old, chosen.t_old),
-                np.where(use, other.h, chosen.h),
-                np.where(use[:, None], other.y_old, chosen.y_old),
-                np.where(use[None, :, None], other.F, chosen.F),
-            )
-        return chosen
-
-
-def _keep(pieces: dict[str, Any], which: str, n: int, rows: Any, dense: Any) -> None:
-    """Keep ``dense`` (energy only) as ``pieces[which]`` of the rows ``rows`` of n."""
-    import numpy as np
-
-    from mdcalc.core.block_ode import Dense
-
-    if which not in pieces:
-        pieces[which] = Dense(
-            np.full(n, np.nan),
-            np.full(n, np.nan),
-            np.full((n, 1), np.nan),
-            np.full((7, n, 1), np.nan),
-        )
-    kept = pieces[which]
-    kept.t_old[rows], kept.h[rows] = dense.t_old, dense.h
-    kept.y_old[rows], kept.F[:, rows] = dense.y_old, dense.F
-
-
-class _Last:
-    """The last accepted step's extension of each row (energy only)."""
-
-    def __init__(self, n: int) -> None:
-        self.n = n
-        self.pieces: dict[str, Any] = {}
-
-    def put(self, rows: Any, dense: Any) -> None:
-        _keep(self.pieces, "last", self.n, rows, dense)
-
-
-def _energy_only(dense: Any) -> Any:
-    from mdcalc.core.block_ode import Dense
-
-    return Dense(dense.t_old, dense.h, dense.y_old[:, :1], dense.F[:, :, :1])
-
-
-class _Extremes:
-    """The largest and smallest ω over [first, end] and t at ``first``, from the
-    steps' continuous extensions: sampled at nine points a step, then refined by
-    golden section on the best step and its neighbours, as the single scene refines
-    its 2048-point grid on its dense solution."""
-
-    def __init__(self, formulas: _Formulas, base: Any, first: Any, end: Any, start: Any) -> None:
-        import numpy as np
-
-        n = np.size(first)
-        self.formulas, self.base = formulas, base
-        self.first, self.end, self.start = first, end, start
-        self.has = first >= base.start_angle - 1e-9
-        self.t_first = np.where(first <= start, 0.0, np.nan)
-        self.best = {sign: _Best(n, sign) for sign in (1.0, -1.0)}
-        self.last = _Last(n)
-
-    def see(self, step: Any) -> None:
-        import numpy as np
-
-        rows = step.rows
-        inside = self.has[rows] & (step.t_new > self.first[rows])
-        if not inside.any():
-            return
-        at = np.flatnonzero(inside)
-        r = rows[at]
-        dense = step.dense().take(at)
-        crossing = (step.t_old[at] <= self.first[r]) & (self.first[r] > self.start[r])
-        if crossing.any():
-            c = np.flatnonzero(crossing)
-            self.t_first[r[c]] = dense.take(c).at(self.first[r[c]], 1)
-        low = np.maximum(step.t_old[at], self.first[r])
-        high = step.t_new[at]
-        width = (high - low) / SAMPLES_A_STEP
-        angles = low + width * np.arange(SAMPLES_A_STEP + 1)[:, None]  # (9, m)
-        angles[-1] = high
-        omega = _speed(self.formulas, self.base, self.start, r, dense, angles)
-        here = _energy_only(dense)
-        for best in self.best.values():
-            best.fill_next(r, here)
-            best.offer(r, omega, angles, width, here, self.last)
-        self.last.put(r, here)
-
-    def values(self, t_end: Any) -> dict[str, Any]:
-        import numpy as np
-
-        from mdcalc.core.search import golden_maximum
-
-        n = np.size(self.first)
-        rows = np.flatnonzero(self.has & np.isfinite(self.best[1.0].value))
-        out: dict[str, Any] = {}
-        if not rows.size:
-            nothing = np.full(n, np.nan)
-            return dict.fromkeys(FLUCTUATION_KEYS, nothing)
-        for key, best in (("max_speed", self.best[1.0]), ("min_speed", self.best[-1.0])):
-            sign = best.sign
-            width = best.width[rows]
-            low = np.maximum(best.angle[rows] - width, self.first[rows])
-            high = np.minimum(best.angle[rows] + width, self.end[rows])
-
-            def f(angle: Any, best: _Best = best, sign: float = sign) -> Any:
-                dense = best.around(rows, angle)
-                return sign * _speed(self.formulas, self.base, self.start, rows, dense, angle)
-
-            refined = golden_maximum(f, low, high, GOLDEN_ITERATIONS)
-            result = np.full(n, np.nan)
-            result[rows] = sign * np.maximum(f(refined), sign * best.value[rows])
-            out[key] = result
-        mean = np.where(self.has, TWO_PI / (t_end - self.t_first), np.nan)
-        out["mean_speed_revolution"] = mean
-        out["fluctuation"] = (out["max_speed"] - out["min_speed"]) / mean
-        return out

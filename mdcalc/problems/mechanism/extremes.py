@@ -1,0 +1,326 @@
+"""The extremes of ω over a mechanism block's last revolution (:mod:`~.kernel`),
+from the reference's steps as they are taken."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from mdcalc.problems.mechanism.case import TWO_PI
+from mdcalc.problems.mechanism.fluctuation import GRID_POINTS
+from mdcalc.problems.mechanism.pieces import Piece
+
+#: Points of each step's continuous extension where the extremes of ω are sought:
+#: at least this many a step; more where the step's curvature could hide a hump of
+#: ω more than SAMPLING_TOLERANCE above the samples (a step as long as a table's
+#: piece at nine points passed over one), but never closer than the single scene's
+#: grid (GRID_POINTS a revolution), whose spacing is taken where I is a formula and
+#: no bound is.
+SAMPLES_A_STEP = 8
+#: A step is sampled so closely that ω²/2 = E/I between two samples cannot exceed
+#: the larger by more than this fraction of E/I at the step's start (ω by half of
+#: it), by the bound on (E/I)'' from the extension's terms (:func:`_curvature`).
+SAMPLING_TOLERANCE = 2e-7
+#: Sample points × rows evaluated at a time (arrays that stay in the cache).
+SAMPLE_CELLS = 32_768
+#: Golden-section iterations of an extreme (the single scene takes 60): its bracket,
+#: two samples' spacing (at most 2·2π/GRID_POINTS), shrinks to 2·10⁻¹¹ rad, where ω
+#: is flat to far below its rounding.
+GOLDEN_ITERATIONS = 40
+
+FLUCTUATION_KEYS = ("max_speed", "min_speed", "mean_speed_revolution", "fluctuation")
+
+
+def _basis_bounds() -> Any:
+    """max |b|, |b'|, |b''| over x in [0, 1] of the basis of DOP853's extension,
+    y = y_old + Σ F_j·b_j(x) with b_j = x^⌈(j+1)/2⌉·(1-x)^⌊(j+1)/2⌋ (the nesting of
+    :meth:`~mdcalc.core.block_ode.Dense.at`): (3, 7), from 20 001 points with a 1 %
+    margin (the grid misses a maximum by far less)."""
+    import numpy as np
+    from numpy.polynomial import Polynomial as P
+
+    x = np.linspace(0.0, 1.0, 20_001)
+    out = np.empty((3, 7))
+    for j in range(7):
+        b = P([0.0, 1.0]) ** ((j + 2) // 2) * P([1.0, -1.0]) ** ((j + 1) // 2)
+        for order in range(3):
+            out[order, j] = 1.01 * np.max(np.abs(b.deriv(order)(x)))
+    return out
+
+
+def _curvature(dense: Any, inertia: Any, slope: Any) -> Any:
+    """A bound on |d²(E/I)/dx²| over each row's step (x = (φ - φ_old)/h), E its
+    extension and I = inertia + slope·(φ - φ_old) linear over the step (I > 0)."""
+    import numpy as np
+
+    global _BOUNDS
+    if _BOUNDS is None:
+        _BOUNDS = _basis_bounds()
+    terms = np.abs(dense.F[:, :, 0])  # (7, m)
+    e0 = np.abs(dense.y_old[:, 0]) + _BOUNDS[0] @ terms
+    e1, e2 = _BOUNDS[1] @ terms, _BOUNDS[2] @ terms
+    i_x = np.abs(slope) * dense.h
+    low = np.minimum(inertia, inertia + slope * dense.h)
+    return e2 / low + 2.0 * e1 * i_x / low**2 + 2.0 * e0 * i_x**2 / low**3
+
+
+_BOUNDS: Any = None
+
+
+def speed(formulas: Any, base: Any, start: Any, rows: Any, dense: Any, angle: Any) -> Any:
+    """ω = √(2E/I) of the reference at ``angle`` (shape (m,) or (k, m)), as the
+    single scene's ``speed_at``: ω₀ up to its (shifted) start."""
+    import numpy as np
+
+    energy = np.maximum(dense.at(angle, 0), 0.0)
+    omega = np.sqrt(2.0 * energy / formulas.scene(rows, base).inertia(angle))
+    return np.where(angle <= start[rows], base.start_speed[rows], omega)
+
+
+class Best:
+    """The running extreme of ω (``sign`` +1 the largest, -1 the smallest) over the
+    sampled points, with the step that holds it and that step's neighbours."""
+
+    def __init__(self, n: int, sign: float) -> None:
+        import numpy as np
+
+        self.sign = sign
+        self.value = np.full(n, np.nan)
+        self.angle = np.full(n, np.nan)
+        # the spacing of the samples below and above the best one: its step's, or
+        # at an end of its step, the neighbouring step's (the extreme may lie there,
+        # beyond the best step's spacing but closer than the neighbour's samples)
+        self.below = np.full(n, np.nan)
+        self.above = np.full(n, np.nan)
+        self.at_end = np.zeros(n, dtype=bool)
+        self.pieces: dict[str, Any] = {}
+        self.waits = np.zeros(n, dtype=bool)  # for the step after the best one
+
+    def _store(self, which: str, rows: Any, dense: Any) -> None:
+        keep(self.pieces, which, self.value.size, rows, dense)
+
+    def fill_next(self, rows: Any, here: Any, width: Any) -> None:
+        import numpy as np
+
+        waiting = np.flatnonzero(self.waits[rows])
+        if waiting.size:
+            r = rows[waiting]
+            self._store("next", r, here.take(waiting))
+            self.waits[r] = False
+            self.above[r] = np.where(self.at_end[r], width[waiting], self.above[r])
+
+    def offer(
+        self,
+        rows: Any,
+        candidate: Any,
+        angle: Any,
+        index: Any,
+        count: Any,
+        width: Any,
+        here: Any,
+        last: Any,
+    ) -> None:
+        """A step's best sample of each row: its ω and angle, and its index among
+        the step's ``count + 1`` samples (each row's), ``width`` apart."""
+        import numpy as np
+
+        current = self.value[rows]
+        better = np.isnan(current) | (self.sign * candidate > self.sign * current)
+        at = np.flatnonzero(better)
+        if not at.size:
+            return
+        r = rows[at]
+        self.value[r], self.angle[r] = candidate[at], angle[at]
+        self.below[r] = self.above[r] = width[at]
+        self.at_end[r] = index[at] == count[at]
+        self._store("best", r, here.take(at))
+        if "last" in last.pieces:
+            previous = last.pieces["last"].take(r)
+            self._store("previous", r, previous)
+            first = (index[at] == 0) & np.isfinite(last.width[r])
+            self.below[r] = np.where(first, last.width[r], self.below[r])
+        self.waits[r] = True
+
+    def around(self, rows: Any, angle: Any) -> Any:
+        """The extension that holds ``angle`` of each row: the best step's, or a
+        neighbour's just outside it."""
+        import numpy as np
+
+        from mdcalc.core.block_ode import Dense
+
+        best = self.pieces["best"].take(rows)
+        chosen = best
+        for which, outside in (
+            ("previous", angle < best.t_old),
+            ("next", angle > best.t_old + best.h),
+        ):
+            if which not in self.pieces:
+                continue
+            other = self.pieces[which].take(rows)
+            use = outside & np.isfinite(other.h)
+            chosen = Dense(
+                np.where(use, other.t_old, chosen.t_old),
+                np.where(use, other.h, chosen.h),
+                np.where(use[:, None], other.y_old, chosen.y_old),
+                np.where(use[None, :, None], other.F, chosen.F),
+            )
+        return chosen
+
+
+def keep(pieces: dict[str, Any], which: str, n: int, rows: Any, dense: Any) -> None:
+    """Keep ``dense`` (energy only) as ``pieces[which]`` of the rows ``rows`` of n."""
+    import numpy as np
+
+    from mdcalc.core.block_ode import Dense
+
+    if which not in pieces:
+        pieces[which] = Dense(
+            np.full(n, np.nan),
+            np.full(n, np.nan),
+            np.full((n, 1), np.nan),
+            np.full((7, n, 1), np.nan),
+        )
+    kept = pieces[which]
+    kept.t_old[rows], kept.h[rows] = dense.t_old, dense.h
+    kept.y_old[rows], kept.F[:, rows] = dense.y_old, dense.F
+
+
+class Last:
+    """The last accepted step's extension of each row (energy only)."""
+
+    def __init__(self, n: int) -> None:
+        import numpy as np
+
+        self.n = n
+        self.pieces: dict[str, Any] = {}
+        self.width = np.full(n, np.nan)  # its samples' spacing
+
+    def put(self, rows: Any, dense: Any, width: Any) -> None:
+        keep(self.pieces, "last", self.n, rows, dense)
+        self.width[rows] = width
+
+
+def energy_only(dense: Any) -> Any:
+    from mdcalc.core.block_ode import Dense
+
+    return Dense(dense.t_old, dense.h, dense.y_old[:, :1], dense.F[:, :, :1])
+
+
+class Extremes:
+    """The largest and smallest ω over [first, end] and t at ``first``, from the
+    steps' continuous extensions: sampled at SAMPLES_A_STEP + 1 points a step or
+    more (see SAMPLING_TOLERANCE), then refined by golden section on the best step
+    and its neighbours, as the single scene refines its grid of GRID_POINTS on its
+    dense solution."""
+
+    def __init__(self, formulas: Any, base: Any, first: Any, end: Any, start: Any) -> None:
+        import numpy as np
+
+        n = np.size(first)
+        self.formulas, self.base = formulas, base
+        self.first, self.end, self.start = first, end, start
+        self.has = first >= base.start_angle - 1e-9
+        self.t_first = np.where(first <= start, 0.0, np.nan)
+        self.best = {sign: Best(n, sign) for sign in (1.0, -1.0)}
+        self.last = Last(n)
+        fixed = formulas.inertia_formula is None and formulas.inertia_table is None
+        value = formulas.inertia_value
+        self.constant = np.broadcast_to(np.asarray(value, dtype=float), (n,)) if fixed else None
+
+    def see(self, step: Any) -> None:
+        import numpy as np
+
+        rows = step.rows
+        inside = self.has[rows] & (step.t_new > self.first[rows])
+        if not inside.any():
+            return
+        at = np.flatnonzero(inside)
+        r = rows[at]
+        dense = step.dense().take(at)
+        crossing = (step.t_old[at] <= self.first[r]) & (self.first[r] > self.start[r])
+        if crossing.any():
+            c = np.flatnonzero(crossing)
+            self.t_first[r[c]] = dense.take(c).at(self.first[r[c]], 1)
+        low = np.maximum(step.t_old[at], self.first[r])
+        high = step.t_new[at]
+        # each row's own count (a row's samples never depend on its block): the
+        # grid's, or fewer where the step's curvature is proven small enough
+        count = np.ceil((high - low) / (TWO_PI / GRID_POINTS) * (1.0 - 1e-12))
+        piece = step.rhs if isinstance(step.rhs, Piece) else None
+        line = self._inertia(r, piece, dense.t_old)
+        if line is not None:
+            inertia, slope = line
+            bound = _curvature(dense, inertia, slope)
+            scale = np.maximum(dense.y_old[:, 0], 0.0) / inertia
+            x = np.sqrt(8.0 * SAMPLING_TOLERANCE * scale / bound)  # samples apart in x
+            needed = np.ceil((high - low) / dense.h / x)
+            count = np.where(np.isfinite(needed), np.minimum(needed, count), count)
+        count = np.maximum(count, SAMPLES_A_STEP).astype(np.int64)
+        width = (high - low) / count
+        here = energy_only(dense)
+        m = np.arange(r.size)
+        found = {
+            sign: (np.full(r.size, np.nan), np.zeros(r.size, dtype=np.int64)) for sign in self.best
+        }
+        chunk = max(1, SAMPLE_CELLS // r.size)  # samples at a time, for the cache
+        most = int(count.max())
+        for begin in range(0, most + 1, chunk):
+            index = np.minimum(np.arange(begin, min(begin + chunk, most + 1))[:, None], count)
+            angles = np.where(index == count, high, low + width * index)  # (k, m)
+            if piece is not None:  # I of the piece's line
+                energy = np.maximum(dense.at(angles, 0), 0.0)
+                omega = np.sqrt(2.0 * energy / piece.inertia_at(r, angles))
+                omega = np.where(angles <= self.start[r], self.base.start_speed[r], omega)
+            else:
+                omega = speed(self.formulas, self.base, self.start, r, dense, angles)
+            for sign, (value, where) in found.items():
+                j = np.argmax(omega if sign > 0 else -omega, axis=0)
+                v = omega[j, m]
+                better = np.isnan(value) | (sign * v > sign * value)
+                value[better], where[better] = v[better], index[j, m][better]
+        for sign, best in self.best.items():
+            value, where = found[sign]
+            angle = np.where(where == count, high, low + width * where)
+            best.fill_next(r, here, width)
+            best.offer(r, value, angle, where, count, width, here, self.last)
+        self.last.put(r, here, width)
+
+    def _inertia(self, rows: Any, piece: Piece | None, at: Any) -> tuple[Any, Any] | None:
+        """I at ``at`` and its slope in φ over the step of each row: the piece's line,
+        or a constant I; None where I is a formula."""
+        import numpy as np
+
+        if piece is not None:
+            a, g = piece.inertia
+            return a[rows] + g[rows] * (at - piece.left[rows]), g[rows]
+        if self.constant is not None:
+            return self.constant[rows], np.zeros(rows.size)
+        return None
+
+    def values(self, t_end: Any) -> dict[str, Any]:
+        import numpy as np
+
+        from mdcalc.core.search import golden_maximum
+
+        n = np.size(self.first)
+        rows = np.flatnonzero(self.has & np.isfinite(self.best[1.0].value))
+        out: dict[str, Any] = {}
+        if not rows.size:
+            nothing = np.full(n, np.nan)
+            return dict.fromkeys(FLUCTUATION_KEYS, nothing)
+        for key, best in (("max_speed", self.best[1.0]), ("min_speed", self.best[-1.0])):
+            sign = best.sign
+            low = np.maximum(best.angle[rows] - best.below[rows], self.first[rows])
+            high = np.minimum(best.angle[rows] + best.above[rows], self.end[rows])
+
+            def f(angle: Any, best: Best = best, sign: float = sign) -> Any:
+                dense = best.around(rows, angle)
+                return sign * speed(self.formulas, self.base, self.start, rows, dense, angle)
+
+            refined = golden_maximum(f, low, high, GOLDEN_ITERATIONS)
+            result = np.full(n, np.nan)
+            result[rows] = sign * np.maximum(f(refined), sign * best.value[rows])
+            out[key] = result
+        mean = np.where(self.has, TWO_PI / (t_end - self.t_first), np.nan)
+        out["mean_speed_revolution"] = mean
+        out["fluctuation"] = (out["max_speed"] - out["min_speed"]) / mean
+        return out
