@@ -165,3 +165,13 @@ def test_a_quadrature_is_not_read_and_its_stages_not_formed():
     dop853_block(rhs, np.zeros(5), y0, ENDS, rtol=1e-10, atol=1e-13, quadratures=1,
                  on_step=lambda s: step.append(s.dense().at(s.t_new, 2)))  # fmt: skip
     assert set(seen) == {2}  # the continuous extension's stages as well
+
+
+def test_a_tiny_piece_keeps_the_step_planned_for_the_next():
+    # A piece 1e-14 long between two near knots: its step is cut to the piece and
+    # proposes what was planned, not ten times the piece (which cost the next piece
+    # a climb back, step by step).
+    y0 = np.tile([1.0, 0.0], (5, 1))
+    run = dop853_block(_rhs, np.zeros(5), y0, np.full(5, 1e-14), rtol=1e-10, atol=1e-13,
+                       first_step=np.full(5, 0.3))  # fmt: skip
+    assert run.done.all() and np.all(run.step >= 0.3)

@@ -335,3 +335,84 @@ def test_the_curvature_bound_holds_on_random_extensions():
     second = np.abs(np.diff(u, 2, axis=0)) / (x[1, 0] - x[0, 0]) ** 2
     assert np.all(second.max(axis=0) <= bound)
     assert np.median(second.max(axis=0) / bound) > 0.2  # a bound, not a wild one (0.48)
+
+
+def test_a_spike_of_speed_at_a_dip_of_inertia_is_the_maximum():
+    # I dips to 1.2 between two knots 0.01° on either side of 180°: ω spikes there,
+    # narrower than the single scene's grid of 2048 a turn, which stepped over it
+    # (54.06 rad/s reported against 66.09 at 095f1b9). Each table knot of the last
+    # turn is now a candidate. With M a table of φ alone, E = E₀ + ∫M dφ exactly
+    # (M piecewise linear: its integral is the trapezoids'), so ω at the dip, the
+    # maximum, is √(2E/1.2) by hand.
+    data = {
+        "problem": "mechanism",
+        "title": "a dip of I",
+        "torque": {"angles_deg": [0, 120, 240, 360], "values": [30.0, -20.0, 10.0, 30.0]},
+        "inertia": {
+            "angles_deg": [0, 90, 179.99, 180, 180.01, 270, 360],
+            "values": [2.0, 2.2, 2.0, 1.2, 2.0, 1.8, 2.0],
+        },
+        "motion": {"start_speed": 50.0, "revolutions": 3.0, "steps_per_revolution": 12,
+                   "start_angle": 0.3},
+    }  # fmt: skip
+    phi = np.concatenate([[0.3], np.radians(np.arange(120, 901, 120)), [5 * math.pi]])
+    torque = np.interp(np.degrees(phi) % 360, [0, 120, 240, 360], [30.0, -20.0, 10.0, 30.0])
+    energy = 0.5 * (2.0 + 0.2 * math.degrees(0.3) / 90) * 50.0**2 + np.trapezoid(torque, phi)
+    peak = math.sqrt(2.0 * energy / 1.2)
+    out = _against_single_scenes(data, {"motion.start_speed": [50.0]})
+    assert out["max_speed"][0] == pytest.approx(peak, rel=1e-9)
+
+
+def test_a_row_across_its_knots_leaves_the_others_on_their_lines(monkeypatch):
+    # A row with more knots than MAX_SEGMENTS runs across them with the formulas'
+    # right-hand side (as the single scene does); it sent its whole block there,
+    # so a row's bits depended on its block-mates. Now each row keeps its own way.
+    from mdcalc.problems.mechanism import reference
+
+    monkeypatch.setattr(reference, "MAX_SEGMENTS", 100)
+    module, _, data, model = _case("mechanism", "mechanism/tabulated_press.toml")
+    data["motion"]["revolutions"] = 3.0  # 36 knots; 10 revolutions: 120
+    model = validate(module.Case, CaseText(CASES / "x.toml", "", data))
+    with np.errstate(all="ignore"):
+        alone = module.sweep(model, {"motion.revolutions": np.array([3.0])})
+        both = module.sweep(model, {"motion.revolutions": np.array([3.0, 10.0])})
+    for key, value in alone.items():
+        assert np.array_equal(np.broadcast_to(value, (1,)), np.broadcast_to(both[key], (2,))[:1],
+                              equal_nan=True), key  # fmt: skip
+    _against_single_scenes(data, {"motion.revolutions": [10.0]})
+
+
+def test_an_inertia_of_zero_at_a_knot_is_declined():
+    # ω is infinite there (1/ω = 0: no NaN to stop the run), and the single scene's
+    # validation refuses the value: the kernel leaves the row to it.
+    module = PROBLEMS["mechanism"].load()
+    data = {
+        "problem": "mechanism",
+        "title": "M of φ alone",
+        "torque": {"angles_deg": [0, 90, 180, 270, 360], "values": [50.0, 80.0, -20.0, 10.0, 50.0]},
+        "inertia": {"angles_deg": [0, 90, 180, 270, 360], "values": [2.0, 1.5, 1.0, 2.5, 2.0]},
+        "motion": {"start_speed": 60.0, "revolutions": 3.3, "steps_per_revolution": 12},
+    }
+    model = validate(module.Case, CaseText(CASES / "x.toml", "", data))
+    with np.errstate(all="ignore"):
+        out = module.sweep(model, {"inertia.values.2": np.array([1.0, 0.0, 1e-300])})
+    assert out[DECLINED].tolist() == [False, True, True]
+
+
+def test_knots_an_ulp_apart_are_one():
+    # A table over a whole turn from 10° to 370°: 370° lands 2e-16 rad from 10° once
+    # reduced to a turn; two knots there made a piece of 2e-16 rad every turn.
+    from mdcalc.problems.mechanism.scene import table_knots
+
+    module = PROBLEMS["mechanism"].load()
+    angles = [10.0 + 30.0 * k for k in range(13)]
+    data = {
+        "problem": "mechanism",
+        "title": "from 10°",
+        "torque": {"angles_deg": angles, "values": [100.0] * 13},
+        "inertia": {"angles_deg": [0.0, 180.0, 360.0], "values": [2.0, 1.5, 2.0]},
+        "motion": {"start_speed": 60.0, "revolutions": 2.0, "steps_per_revolution": 12},
+    }
+    knots = table_knots(validate(module.Case, CaseText(CASES / "x.toml", "", data)))
+    assert len(knots) == 14  # the torque's 12, and the inertia's 0° and 180°
+    assert min(np.diff(knots)) > 0.1

@@ -211,7 +211,9 @@ def dop853_block(
     f = rhs(everyone, t, y[:, :inputs])
     if first_step is not None:
         evaluations = np.full(n, 1, dtype=np.int64)
-        h_abs = np.minimum(np.asarray(first_step, dtype=float), t1 - t)
+        # not cut to the end here: the step's end is, and the cut step proposes what
+        # was planned (a tiny piece must not shrink the next one's first step)
+        h_abs = np.array(first_step, dtype=float, copy=True)
     else:
         evaluations = np.full(n, 2, dtype=np.int64)
         h_abs = _initial_step(rhs, everyone, t, y, f, t1, rtol, atol, inputs)

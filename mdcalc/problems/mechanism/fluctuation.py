@@ -8,7 +8,7 @@ from dataclasses import dataclass
 from mdcalc.core.search import golden_maximum
 from mdcalc.problems.mechanism.case import TWO_PI
 from mdcalc.problems.mechanism.kovylin import Path
-from mdcalc.problems.mechanism.reference import Reference
+from mdcalc.problems.mechanism.reference import Reference, knots_between
 from mdcalc.problems.mechanism.scene import Scene
 
 #: Points of the grid over the last revolution where the extremes of ω are sought
@@ -81,6 +81,14 @@ def fluctuation_of_reference(scene: Scene, ref: Reference) -> Fluctuation | None
 
     top, top_angle = refine(speeds.index(max(speeds)), 1.0)
     low, low_angle = refine(speeds.index(min(speeds)), -1.0)
+    # ω has a kink at each knot of a table of I (a spike where I dips between two
+    # close knots): the grid can step over one, so each is a candidate of its own
+    knots = knots_between(scene, first, end)
+    for angle, value in zip(knots, ref.speeds_at(knots), strict=True):
+        if value > top:
+            top, top_angle = value, angle
+        if value < low:
+            low, low_angle = value, angle
     return Fluctuation(
         top,
         top_angle,

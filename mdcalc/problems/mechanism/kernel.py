@@ -7,7 +7,8 @@ integrated by DOP853 at rtol 10⁻¹¹ with the same tolerances, start from rest
 floor (:func:`~.reference.reference`), here stepped for every row at once by
 :func:`mdcalc.core.block_ode.dop853_block`. The speed fluctuation takes the extremes of
 ω over the last revolution from DOP853's continuous extension (:mod:`~.extremes`),
-sampled at least as closely as the single scene's grid and refined by golden
+sampled as closely as a bound on its curvature needs (no closer than the single
+scene's grid) and refined by golden
 section. Kovylin's (5) runs as :func:`~.kovylin.kovylin` does, node by node with
 each row's own halving, on the same step formula.
 
@@ -343,34 +344,42 @@ def _reference(formulas: _Formulas, base: Any, fluctuation: bool, nodes: bool) -
     used = np.zeros(n, dtype=np.int64)
     moving = live.copy()
     knots, first, count = _knots(base.breaks, start, end)
-    across = count < 0  # rows that run across their knots
+    across = count < 0  # rows that run across their knots, in one piece
     count = np.maximum(count, 0)
-    proposal = None  # the first piece's step is scipy's; each next one goes on
     tables = formulas.torque_table is not None and formulas.inertia_formula is None
-    tables &= bool(base.breaks) and not across.any()
-    lines = Lines(formulas, base, base.breaks) if tables else None
+    lines = Lines(formulas, base, base.breaks) if tables and base.breaks else None
+    if lines is not None:  # (an I of 0 at a knot: ω infinite there, 1/ω = 0)
+        moving &= ~lines.invalid
+    proposal = np.ones(n)  # each piece goes on with the step the last one proposed
     for piece in range(int(np.max(count, initial=0)) + 1):
         inside = piece < count
         index = np.minimum(first + piece, len(knots) - 1)
         stage = np.where(inside, knots[index], end)
-        out = dop853_block(
-            rhs if lines is None else lines.piece(knots, index, t, floor),
-            np.where(moving, t, stage),
-            np.where(moving[:, None], y, np.array([1.0, 0.0])),
-            stage,
-            rtol=REFERENCE_RTOL,
-            atol=atol,
-            stop=stop,
-            on_step=on_step,
-            budget=EXPLICIT_BUDGET - used,
-            dense_counted=True,  # the single reference keeps its dense solution
-            first_step=proposal,
-            quadratures=1,  # t is an integral: dE/dφ does not read it
-        )
-        proposal = np.where(moving, out.step, 1.0)
-        used += out.evaluations
-        t, y = np.where(moving, out.t, t), np.where(moving[:, None], out.y, y)
-        moving &= out.done
+        groups: list[tuple[Any, Any]] = [(rhs, np.ones(n, dtype=bool))]
+        if lines is not None:  # a row across its knots has no lines: rhs, alone
+            groups = [(lines.piece(knots, index, t, floor), ~across), (rhs, across)]
+        for f, members in groups:
+            active = moving & members
+            if not active.any():
+                continue
+            out = dop853_block(
+                f,
+                np.where(active, t, stage),
+                np.where(active[:, None], y, np.array([1.0, 0.0])),
+                stage,
+                rtol=REFERENCE_RTOL,
+                atol=atol,
+                stop=stop,
+                on_step=on_step,
+                budget=EXPLICIT_BUDGET - used,
+                dense_counted=True,  # the single reference keeps its dense solution
+                first_step=None if piece == 0 else proposal,
+                quadratures=1,  # t is an integral: dE/dφ does not read it
+            )
+            proposal = np.where(active, out.step, proposal)
+            used += np.where(active, out.evaluations, 0)
+            t, y = np.where(active, out.t, t), np.where(active[:, None], out.y, y)
+            moving = np.where(active, out.done, moving)
     declined |= ~moving | bad
     e_end, t_end = y[:, 0], y[:, 1]
     final_speed = np.sqrt(2.0 * e_end / np.broadcast_to(scene.inertia(end), (n,)))
