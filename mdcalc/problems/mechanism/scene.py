@@ -196,23 +196,29 @@ class PeriodicRows:
                 else:
                     base[k, s] = value
         self.base = base if isinstance(values[0], list) else base[:, 0]
-        #: The angles last located (the array itself) and their cells and weights.
-        self._last: list[Any] = [None, None]
+        #: The two arrays of angles last located (the arrays themselves) and their
+        #: cells and weights, the latest first.
+        self._last: list[Any] = [None, None, None, None]
 
     def locate(self, phi: Any) -> tuple[Any, Any]:
-        """The cell k of each angle and the weight w of its right end. The last
-        angles asked and their cells are kept: M and I of one right-hand side are
-        read at the same angles, from tables that may share theirs (:meth:`share`)."""
+        """The cell k of each angle and the weight w of its right end. The last two
+        arrays of angles asked and their cells are kept: M and I of one right-hand
+        side are read at the same angles, Kovylin's step at two, from tables that may
+        share theirs (:meth:`share`)."""
         import numpy as np
 
-        if phi is self._last[0]:
-            return self._last[1]
+        last = self._last
+        if phi is last[0]:
+            return last[1]
+        if phi is last[2]:
+            return last[3]
         x = self.start + (phi - self.start) % TWO_PI
-        last = len(self.angles) - 2
-        k = np.minimum(np.maximum(np.searchsorted(self.angles, x, side="right") - 1, 0), last)
+        top = len(self.angles) - 2
+        k = np.minimum(np.maximum(np.searchsorted(self.angles, x, side="right") - 1, 0), top)
         a0, a1 = self.angles[k], self.angles[k + 1]
         found = k, (x - a0) / (a1 - a0)
-        self._last[0], self._last[1] = phi, found
+        last[2], last[3] = last[0], last[1]
+        last[0], last[1] = phi, found
         return found
 
     def share(self, other: PeriodicRows) -> None:
