@@ -16,6 +16,10 @@ TWO_PI = 2.0 * math.pi
 
 DEG = math.pi / 180.0
 
+#: The least step between two angles of a table [rad]: closer ones are a jump the
+#: angles' rounding (an ulp of a few turns is 10⁻¹⁵) reads a part of.
+MIN_ANGLE_STEP = 1e-9
+
 #: Kovylin nodes over the run at the user's n (the Methods table runs 7 times as many).
 MAX_NODES = 20_000
 
@@ -48,6 +52,13 @@ class _Tabulated(CaseModel):
         for a, b in zip(angles, angles[1:], strict=False):
             if not b > a:
                 raise FieldError((key,), "angles must increase strictly")
+            if b - a < MIN_ANGLE_STEP:
+                raise FieldError(
+                    (key,),
+                    f"two angles {b - a:.3g} rad apart: a table cannot tell them apart"
+                    f" (at least {MIN_ANGLE_STEP:g} rad; a jump needs a step of its own,"
+                    " say 0.01°)",
+                )
         if angles[-1] - angles[0] > TWO_PI * (1.0 + 1e-12):
             raise FieldError(
                 (key,), "a table covers one revolution (it repeats every 360°); the span is more"

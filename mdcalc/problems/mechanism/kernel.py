@@ -348,8 +348,7 @@ def _reference(formulas: _Formulas, base: Any, fluctuation: bool, nodes: bool) -
     count = np.maximum(count, 0)
     tables = formulas.torque_table is not None and formulas.inertia_formula is None
     lines = Lines(formulas, base, base.breaks) if tables and base.breaks else None
-    if lines is not None:  # (an I of 0 at a knot: ω infinite there, 1/ω = 0)
-        moving &= ~lines.invalid
+    moving &= ~_unfit_inertia(formulas, base)
     proposal = np.ones(n)  # each piece goes on with the step the last one proposed
     for piece in range(int(np.max(count, initial=0)) + 1):
         inside = piece < count
@@ -396,8 +395,36 @@ def _reference(formulas: _Formulas, base: Any, fluctuation: bool, nodes: bool) -
     }
     if extremes is not None:
         values |= extremes.values(t_end)
+        # a last turn's extreme that is not a number leaves the row to the single scene
+        for key in ("max_speed", "min_speed"):
+            declined |= extremes.has & ~np.isfinite(values[key])
     declined |= ~np.isfinite(final_speed) | ~np.isfinite(t_end)
     return _Run(values, declined, None if at_nodes is None else at_nodes.speeds)
+
+
+#: A table of I whose least value is below this fraction of its largest is left to
+#: the single scene: lines of I across a dip to nearly nothing lose its digits (a
+#: drawn 10⁻¹⁴ kg·m² beside 2 gave ω_max 4·10⁻⁴ high; 10⁻¹⁶, NaN extremes).
+INERTIA_SPAN = 1e-10
+
+
+def _unfit_inertia(formulas: _Formulas, base: Any) -> Any:
+    """The rows whose table of I has a value at a knot below MAGNITUDE_FLOOR (the
+    single scene's validation refuses it; drawn, ω is infinite there and 1/ω = 0, no
+    NaN to stop the run) or below INERTIA_SPAN of its largest."""
+    import numpy as np
+
+    from mdcalc.input.model import MAGNITUDE_FLOOR
+
+    n = np.size(base.start_angle)
+    table = formulas.inertia_table
+    if table is None:
+        return np.zeros(n, dtype=bool)
+    values = np.array(
+        [np.broadcast_to(table(np.arange(n), np.full(n, b)), (n,)) for b in base.breaks]
+    )
+    low, high = values.min(axis=0), values.max(axis=0)
+    return ~(low >= MAGNITUDE_FLOOR) | ~(low >= INERTIA_SPAN * high)
 
 
 def _knots(breaks: tuple[float, ...], start: Any, end: Any) -> tuple[Any, Any, Any]:

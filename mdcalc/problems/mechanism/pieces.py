@@ -6,8 +6,6 @@ from __future__ import annotations
 
 from typing import Any
 
-from mdcalc.input.model import MAGNITUDE_FLOOR
-
 
 class Lines:
     """The tables at their knots, each row's values once: on a piece between two
@@ -29,9 +27,6 @@ class Lines:
             for w in columns
         ]
         self.rows = np.arange(n)
-        #: rows whose I at a knot is not a positive number mdcalc computes with
-        #: (declined: the single scene's validation refuses them)
-        self.invalid = ~np.all(self.inertia >= MAGNITUDE_FLOOR, axis=0)
 
     def piece(self, knots: Any, index: Any, left: Any, floor: Any) -> Piece:
         """The right-hand side on each row's piece from ``left`` on, between the

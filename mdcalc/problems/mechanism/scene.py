@@ -133,20 +133,13 @@ def scene_of(case: Case) -> Scene:
 
 
 def table_knots(case: Case) -> tuple[float, ...]:
-    """The tables' knots in [0, 2π), in order: kinks of M or I. Knots within 10⁻¹²
-    of a turn of each other are one (370° and 10° land an ulp or two apart)."""
+    """The tables' knots in [0, 2π), in order: kinks of M or I."""
     knots: set[float] = set()
     for section in (case.torque, case.inertia):
         angles = section.table_angles()
         if angles is not None:
             knots.update(a % TWO_PI for a in angles)
-    out: list[float] = []
-    for k in sorted(knots):
-        if not out or k - out[-1] > 1e-12 * TWO_PI:
-            out.append(k)
-    if len(out) > 1 and out[0] + TWO_PI - out[-1] <= 1e-12 * TWO_PI:
-        out.pop()
-    return tuple(out)
+    return tuple(sorted(knots))
 
 
 def _two_way(
