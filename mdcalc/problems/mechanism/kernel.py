@@ -8,9 +8,9 @@ floor (:func:`~.reference.reference`), here stepped for every row at once by
 :func:`mdcalc.core.block_ode.dop853_block`. The speed fluctuation takes the extremes of
 ω over the last revolution from DOP853's continuous extension (:mod:`~.extremes`),
 sampled as closely as a bound on its curvature needs (no closer than the single
-scene's grid) and refined by golden
-section. Kovylin's (5) runs as :func:`~.kovylin.kovylin` does, node by node with
-each row's own halving, on the same step formula.
+scene's grid) and refined by golden section. Kovylin's (5) runs as
+:func:`~.kovylin.kovylin` does, node by node with each row's own halving, on the
+same step formula.
 
 A row the single scene would run otherwise is marked ``DECLINED``, to be solved
 alone: a stiff scene (Radau), a stall, a formula that cannot be evaluated along the
@@ -58,8 +58,9 @@ SWEEP_KEYS = {
     "inertia.values.N": "I at an angle of the table",
 }
 
-#: The reference is an ODE run at rtol 10⁻¹¹ (DOP853, as the single scene's). Without
-#: tables the kernel takes the single run's steps up to rounding, but where the error estimate
+#: The reference is an ODE run at rtol 10⁻¹¹ (DOP853, as the single scene's).
+#: Without tables the kernel takes the single run's steps up to rounding (with them
+#: each piece goes on with the proposed step), but where the error estimate
 #: is itself at rounding level (a kink of M each revolution, as crank_press.toml's
 #: max(sin φ, 0); E near zero before a stall) the two runs step differently and
 #: differ by the reference's own error: measured 5.6·10⁻⁷ of ω against the exact
