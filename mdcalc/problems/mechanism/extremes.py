@@ -74,13 +74,18 @@ def _curvature(dense: Any, inertia: Any, slope: Any) -> Any:
 _BOUNDS: Any = None
 
 
-def speed(formulas: Any, base: Any, start: Any, rows: Any, dense: Any, angle: Any) -> Any:
+def speed(
+    formulas: Any, base: Any, start: Any, rows: Any, dense: Any, angle: Any, inertia: Any = None
+) -> Any:
     """ω = √(2E/I) of the reference at ``angle`` (shape (m,) or (k, m)), as the
-    single scene's ``speed_at``: ω₀ up to its (shifted) start."""
+    single scene's ``speed_at``: ω₀ up to its (shifted) start. ``inertia``: I at
+    ``angle`` where the caller has it (a piece's line), else the scene's."""
     import numpy as np
 
+    if inertia is None:
+        inertia = formulas.scene(rows, base).inertia(angle)
     energy = np.maximum(dense.at(angle, 0), 0.0)
-    omega = np.sqrt(2.0 * energy / formulas.scene(rows, base).inertia(angle))
+    omega = np.sqrt(2.0 * energy / inertia)
     return np.where(angle <= start[rows], base.start_speed[rows], omega)
 
 
@@ -274,12 +279,8 @@ class Extremes:
         for begin in range(0, most + 1, chunk):
             index = np.minimum(np.arange(begin, min(begin + chunk, most + 1))[:, None], count)
             angles = np.where(index == count, high, low + width * index)  # (k, m)
-            if piece is not None:  # I of the piece's line
-                energy = np.maximum(dense.at(angles, 0), 0.0)
-                omega = np.sqrt(2.0 * energy / piece.inertia_at(r, angles))
-                omega = np.where(angles <= self.start[r], self.base.start_speed[r], omega)
-            else:
-                omega = speed(self.formulas, self.base, self.start, r, dense, angles)
+            inertia = None if piece is None else piece.inertia_at(r, angles)  # its line
+            omega = speed(self.formulas, self.base, self.start, r, dense, angles, inertia)
             for sign, (value, where) in found.items():
                 j = np.argmax(omega if sign > 0 else -omega, axis=0)
                 v = omega[j, m]

@@ -34,7 +34,7 @@ from mdcalc.input.model import in_tiles, kernel_answer, value_at, with_values
 from mdcalc.problems.mechanism.case import TWO_PI, VARIABLES, Case
 from mdcalc.problems.mechanism.extremes import FLUCTUATION_KEYS, Extremes, speed
 from mdcalc.problems.mechanism.kovylin import MAX_REFINEMENT, kovylin_step
-from mdcalc.problems.mechanism.pieces import Lines
+from mdcalc.problems.mechanism.pieces import Lines, at_knots
 from mdcalc.problems.mechanism.scene import (
     PeriodicRows,
     Scene,
@@ -349,7 +349,7 @@ def _reference(formulas: _Formulas, base: Any, fluctuation: bool, nodes: bool) -
     count = np.maximum(count, 0)
     tables = formulas.torque_table is not None and formulas.inertia_formula is None
     lines = Lines(formulas, base, base.breaks) if tables and base.breaks else None
-    moving &= ~_unfit_inertia(formulas, base)
+    moving &= ~_unfit_inertia(formulas, base, lines)
     proposal = np.ones(n)  # each piece goes on with the step the last one proposed
     for piece in range(int(np.max(count, initial=0)) + 1):
         inside = piece < count
@@ -409,10 +409,11 @@ def _reference(formulas: _Formulas, base: Any, fluctuation: bool, nodes: bool) -
 INERTIA_SPAN = 1e-10
 
 
-def _unfit_inertia(formulas: _Formulas, base: Any) -> Any:
+def _unfit_inertia(formulas: _Formulas, base: Any, lines: Lines | None) -> Any:
     """The rows whose table of I has a value at a knot below MAGNITUDE_FLOOR (the
     single scene's validation refuses it; drawn, ω is infinite there and 1/ω = 0, no
-    NaN to stop the run) or below INERTIA_SPAN of its largest."""
+    NaN to stop the run) or below INERTIA_SPAN of its largest (the values at the
+    knots are ``lines``', where there are lines)."""
     import numpy as np
 
     from mdcalc.input.model import MAGNITUDE_FLOOR
@@ -421,8 +422,10 @@ def _unfit_inertia(formulas: _Formulas, base: Any) -> Any:
     table = formulas.inertia_table
     if table is None:
         return np.zeros(n, dtype=bool)
-    values = np.array(
-        [np.broadcast_to(table(np.arange(n), np.full(n, b)), (n,)) for b in base.breaks]
+    values = (
+        at_knots(lambda phi: table(np.arange(n), phi), base.breaks, n)
+        if lines is None
+        else lines.inertia
     )
     low, high = values.min(axis=0), values.max(axis=0)
     return ~(low >= MAGNITUDE_FLOOR) | ~(low >= INERTIA_SPAN * high)

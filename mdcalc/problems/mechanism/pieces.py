@@ -6,6 +6,15 @@ from __future__ import annotations
 
 from typing import Any
 
+from mdcalc.problems.mechanism.scene import across_speeds, speed_cell
+
+
+def at_knots(f: Any, breaks: tuple[float, ...], n: int) -> Any:
+    """f(φ) of a block's n rows at each knot: (knots, n)."""
+    import numpy as np
+
+    return np.array([np.broadcast_to(f(np.full(n, b)), (n,)) for b in breaks])
+
 
 class Lines:
     """The tables at their knots, each row's values once: on a piece between two
@@ -19,12 +28,10 @@ class Lines:
         n = np.size(base.start_angle)
         speeds = formulas.case_speeds
         self.speeds = None if speeds is None else np.array(speeds)
-        at = [np.full(n, b) for b in breaks]
-        self.inertia = np.array([np.broadcast_to(scene.inertia(phi), (n,)) for phi in at])
+        self.inertia = at_knots(scene.inertia, breaks, n)
         columns = [0.0] if speeds is None else speeds
         self.columns = [
-            np.array([np.broadcast_to(scene.torque(phi, np.full(n, w)), (n,)) for phi in at])
-            for w in columns
+            at_knots(lambda phi, w=w: scene.torque(phi, np.full(n, w)), breaks, n) for w in columns
         ]
         self.rows = np.arange(n)
 
@@ -108,12 +115,10 @@ class Piece:
             if self.q is not None:
                 torque += at(self.q, s) * omega
         else:
-            grid = self.speeds
-            last = len(grid) - 2
-            j = np.minimum(np.maximum(np.searchsorted(grid, omega, side="right") - 1, 0), last)
+            j = speed_cell(self.speeds, omega)
             values = np.stack([at(c, s) for c in self.columns])
             m0 = np.take_along_axis(values, j[None], 0)[0]
             m1 = np.take_along_axis(values, j[None] + 1, 0)[0]
-            torque = m0 + (omega - grid[j]) / (grid[j + 1] - grid[j]) * (m1 - m0)
+            torque = across_speeds(self.speeds, omega, j, m0, m1)
         out[:, 0] = torque
         return out

@@ -253,14 +253,10 @@ def two_way_rows(
     if share is not None:
         table.share(share)
     grid = np.array(speeds)
-    last = len(speeds) - 2
 
     def columns(rows: Any, phi: Any, omega: Any) -> tuple[Any, Any, Any]:
         """The cell j of ω, and M of the columns j and j + 1 at φ."""
-        if last == 0:
-            j: Any = 0  # two speeds: one cell, extrapolated beyond them
-        else:
-            j = np.minimum(np.maximum(np.searchsorted(grid, omega, side="right") - 1, 0), last)
+        j = speed_cell(grid, omega)
         k, w = table.locate(phi)
         ends = []
         for column in (j, j + 1):
@@ -269,11 +265,26 @@ def two_way_rows(
         return j, ends[0], ends[1]
 
     def torque(rows: Any, phi: Any, omega: Any) -> Any:
-        j, m0, m1 = columns(rows, phi, omega)
-        return m0 + (omega - grid[j]) / (grid[j + 1] - grid[j]) * (m1 - m0)
+        return across_speeds(grid, omega, *columns(rows, phi, omega))
 
     def slope(rows: Any, phi: Any, omega: Any) -> Any:
         j, m0, m1 = columns(rows, phi, omega)
         return (m1 - m0) / (grid[j + 1] - grid[j])
 
     return torque, slope
+
+
+def speed_cell(grid: Any, omega: Any) -> Any:
+    """The cell j of ω among a two-way table's speeds ``grid`` (arrays): the
+    first or last beyond them (0 for two speeds: one cell, extrapolated)."""
+    import numpy as np
+
+    last = len(grid) - 2
+    if last == 0:
+        return 0
+    return np.minimum(np.maximum(np.searchsorted(grid, omega, side="right") - 1, 0), last)
+
+
+def across_speeds(grid: Any, omega: Any, j: Any, m0: Any, m1: Any) -> Any:
+    """M at ω from the columns j and j + 1 of the cell, M there m0 and m1."""
+    return m0 + (omega - grid[j]) / (grid[j + 1] - grid[j]) * (m1 - m0)
