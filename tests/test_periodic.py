@@ -1292,3 +1292,19 @@ def test_modes_spread_beyond_double_precision_have_no_answer() -> None:
         RampSystem(*[np.stack([np.asarray(getattr(r, f)) for r in stacked]) for f in fields])
     )
     assert block.failure.tolist() == [SPREAD, periodic.SOLVED]
+
+
+def test_a_singular_row_does_not_take_the_blocks_inverse_with_it() -> None:
+    # numpy's batched inverse raises for the whole block when one matrix is singular;
+    # the modes' inverse then goes row by row: NaN for that row (its condition is not
+    # a number: it takes e^{Aτ}), the others' digits as alone
+    from mdcalc.core.periodic.closed import _inverse
+
+    rng = np.random.default_rng(3)
+    block = rng.normal(size=(4, 4, 4)) + 1j * rng.normal(size=(4, 4, 4))
+    block[2, :, 1] = 0.0  # a column of zeros: LAPACK meets a zero pivot
+    inverse = _inverse(block)
+    assert np.all(np.isnan(inverse[2]))
+    for i in (0, 1, 3):
+        assert np.array_equal(inverse[i], np.linalg.inv(block[i]))
+        assert np.allclose(inverse[i] @ block[i], np.eye(4), atol=1e-12)

@@ -337,9 +337,16 @@ def exact_block(system: RampSystem, size: int = 1) -> PeriodicBlock:
     # (nearly) parallel eigenvectors, and the modal sum loses about ε/gap of the state
     # (gap: their distance over their size). Such rows take e^{Aτ} whole, balanced.
     meet = ~broken & (_closest(eigenvalues) < MEET)
-    # the 1-norm condition (an inverse; the 2-norm's SVD cost three times as much)
+    # the 1-norm condition, from V⁻¹ (the 2-norm's SVD cost three times as much),
+    # which gives the modal coordinates below too (rows that meet invert I: a
+    # repeated eigenvalue is the one way to a singular V)
+    plain = meet | ~np.all(np.isfinite(vectors), axis=(1, 2))
+    inverse = _inverse(np.where(plain[:, None, None], np.eye(2 * n), vectors))
     with np.errstate(all="ignore"):
-        meet |= ~broken & ~(np.linalg.cond(vectors, 1) <= 1e12)
+        condition = np.linalg.norm(vectors, 1, axis=(1, 2)) * np.linalg.norm(
+            inverse, 1, axis=(1, 2)
+        )
+        meet |= ~broken & ~(condition <= 1e12)
     # The particular solution holds K⁻¹: a mode much slower than the load (|λ|T ≪ 1)
     # makes it and the modal part cancel, losing about ε/(λT)² of the result.
     slow = np.min(np.abs(eigenvalues), axis=-1) * t
@@ -357,16 +364,17 @@ def exact_block(system: RampSystem, size: int = 1) -> PeriodicBlock:
     solved = failure == SOLVED
     meet &= solved
     modes = solved & ~meet
-    vectors = np.where(modes[:, None, None], vectors, np.eye(2 * n))  # no singular solve
+    vectors = np.where(modes[:, None, None], vectors, np.eye(2 * n))
+    inverse = np.where(modes[:, None, None], inverse, np.eye(2 * n))
     gap = np.where(modes[:, None], gap, 1.0)
-    modal = np.linalg.solve(vectors, p1.astype(complex)[..., None])
+    load = p1.astype(complex)[..., None]
+    modal = inverse @ load
     # The state sums the modes V as computed, so it wants the coordinates of (b, 0)
-    # in those: the solve alone lost up to cond(V)·ε of them (cond(V) 10⁶–10⁷ on
+    # in those: V⁻¹·(b, 0) alone has them only to about cond(V)·ε (cond(V) 10⁶–10⁷ on
     # stiff drives, whose rows (x, λx) are scaled far apart: 4·10⁻⁷ of a velocity's
     # range seen). One step of refinement, its residual in working precision, takes
     # that to about 10⁻¹¹ (a review: an extended-precision residual does no better).
-    residual = p1.astype(complex)[..., None] - vectors @ modal
-    modal = (modal + np.linalg.solve(vectors, residual))[..., 0]
+    modal = (modal + inverse @ (load - vectors @ modal))[..., 0]
     coefficients = np.where(modes[:, None], t[:, None] * modal / gap, 0.0)
     matrix, origin = np.zeros_like(first), np.zeros_like(p1)
     basis = np.broadcast_to(np.eye(2 * n), first.shape).copy()
@@ -384,6 +392,22 @@ def exact_block(system: RampSystem, size: int = 1) -> PeriodicBlock:
     return PeriodicBlock(
         t, eigenvalues, vectors, coefficients, p0, p1, failure, meet, matrix, origin, basis
     )
+
+
+def _inverse(vectors: np.ndarray) -> np.ndarray:
+    """V⁻¹ of each row; NaN where V is singular (numpy's batched inverse refuses the
+    whole block for one such row: then each row alone, which LAPACK solves with the
+    same operations, so the other rows keep their digits)."""
+    try:
+        return np.asarray(np.linalg.inv(vectors))
+    except np.linalg.LinAlgError:
+        inverse = np.full_like(vectors, np.nan)
+        for i, v in enumerate(vectors):
+            try:
+                inverse[i] = np.linalg.inv(v)
+            except np.linalg.LinAlgError:
+                pass
+        return inverse
 
 
 #: Newton steps at most that polish an eigenvalue of one or two coordinates.
