@@ -1308,3 +1308,26 @@ def test_a_singular_row_does_not_take_the_blocks_inverse_with_it() -> None:
     for i in (0, 1, 3):
         assert np.array_equal(inverse[i], np.linalg.inv(block[i]))
         assert np.allclose(inverse[i] @ block[i], np.eye(4), atol=1e-12)
+
+
+@pytest.mark.parametrize("offset", [0.3, -0.3])
+def test_a_peak_beside_the_periods_end_has_its_neighbour_across_it(offset: float) -> None:
+    # the block's samples lie row after row; a row's last sample looks to its own
+    # first for its neighbour, its first to its own last, not to the rows beside it
+    # (10 higher here). A peak 0.3 of a step past the last sample (or before the
+    # first) is found, to 1e-12, where the wrong neighbour loses it (the sample's
+    # 1 - 2.7e-5 would be the answer)
+    samples, period = 256, np.array([1.0, 1.0])
+    peak_at = (samples - 1 + offset) / samples if offset > 0 else offset / samples
+    low = 0 if offset > 0 else 1  # the row whose wrong neighbour would be the other's
+    shift = np.where(np.arange(2) == low, 0.0, 10.0)
+
+    def observe(rows: np.ndarray, tau: np.ndarray) -> np.ndarray:
+        return shift[rows][:, None] + np.cos(2.0 * math.pi * (tau - peak_at))
+
+    def rate(rows: np.ndarray, tau: np.ndarray) -> np.ndarray:
+        return -2.0 * math.pi * np.sin(2.0 * math.pi * (tau - peak_at)) + 0.0 * rows[:, None]
+
+    values, times = periodic.periodic_maxima(observe, rate, period, samples, np.arange(2))
+    assert values[low] == pytest.approx(1.0, abs=1e-12)
+    assert times[low] == pytest.approx(peak_at % 1.0, abs=1e-9)

@@ -139,6 +139,10 @@ class PeriodicBlock:
         slopes = weights * lam
         level, drift = np.sum(w * self.p0, axis=-1), np.sum(w * self.p1, axis=-1)
 
+        # The exact value and rate take every mode with its own weight: a conjugate
+        # pair's second weight is the first's conjugate only to the round-off of the
+        # coordinates, which a pair near critical damping amplifies (twice the real
+        # part of the first lost 1.6e-11 of a χ against a 40-digit reference)
         def observe(rows: np.ndarray, tau: np.ndarray) -> np.ndarray:
             modal = np.exp(tau[..., None] * lam[rows][:, None, :]) * weights[rows][:, None, :]
             return level[rows][:, None] + drift[rows][:, None] * tau + modal.sum(axis=-1).real

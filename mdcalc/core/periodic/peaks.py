@@ -119,13 +119,18 @@ def periodic_maxima(
     exact = np.where(np.isnan(best_value), best_value, observe(rows, best_time[:, None])[:, 0])
     # the samples within reach of the best (few: one comparison and a flat search),
     # then the local maxima among them, neighbours taken across the period's end
+    # (a broad peak holds many such samples: they take one flat index each, and only
+    # a row's first and last sample look across its period's end for a neighbour)
     near = np.flatnonzero(values >= (best_value - margin)[:, None])
-    owner, where = np.divmod(near, samples)
-    here = values.ravel()[near]
-    peak = (here >= values[owner, (where - 1) % samples]) & (
-        here >= values[owner, (where + 1) % samples]
-    )
-    owner, where, here = owner[peak], where[peak], here[peak]
+    flat = values.ravel()
+    here = flat[near]
+    left, right = flat.take(near - 1, mode="clip"), flat.take(near + 1, mode="clip")
+    where = near % samples
+    first, last = np.flatnonzero(where == 0), np.flatnonzero(where == samples - 1)
+    left[first] = flat[near[first] + samples - 1]
+    right[last] = flat[near[last] - (samples - 1)]
+    peak = np.flatnonzero((here >= left) & (here >= right))
+    owner, where, here = near[peak] // samples, where[peak], here[peak]
     crowded = np.flatnonzero(np.bincount(owner, minlength=len(rows)) > candidates)
     if crowded.size:  # many ringing ties: a row's largest ``candidates``
         keep = np.ones(len(owner), dtype=bool)
