@@ -313,6 +313,73 @@ def test_a_best_sample_at_a_steps_end_is_refined_over_the_neighbours_spacing():
         assert (best.below[0], best.above[0]) == (below, above), index
 
 
+def test_the_steps_that_cannot_hold_an_extreme_are_not_sampled(monkeypatch):
+    # The last turn's steps are kept and sampled at its end only where ω between a
+    # step's ends may, by the curvature's bound, pass the best of all the steps' ends.
+    # Every number is the same, bit for bit, as with every step sampled (a bound of
+    # infinity), and far fewer steps are sampled on the tabulated press.
+    from mdcalc.problems.mechanism import extremes
+
+    module, _, data, model = _case("mechanism", "mechanism/tabulated_press.toml")
+    grid = {
+        "motion.start_speed": np.linspace(60.0, 100.0, 9),
+        "motion.revolutions": np.linspace(3.0, 4.5, 9),
+    }
+    sampled = []
+    real = extremes.Extremes._sample
+
+    def counted(self, step, chosen):
+        sampled.append(chosen.size)
+        return real(self, step, chosen)
+
+    monkeypatch.setattr(extremes.Extremes, "_sample", counted)
+    with np.errstate(all="ignore"):
+        pruned = module.sweep(model, grid)
+    few = sum(sampled)
+    kept = extremes._Step
+    monkeypatch.setattr(
+        extremes, "_Step", lambda *fields: kept(*fields[:-1], np.full_like(fields[-1], np.inf))
+    )
+    sampled.clear()
+    with np.errstate(all="ignore"):
+        every = module.sweep(model, grid)
+    assert not pruned[DECLINED].any()
+    for key, value in every.items():
+        assert np.array_equal(np.asarray(value), np.asarray(pruned[key]), equal_nan=True), key
+    assert few < 0.4 * sum(sampled), (few, sum(sampled))
+
+
+def test_a_hump_of_speed_inside_a_step_below_the_best_end_is_the_maximum():
+    # M of φ alone, I = 1: E = E₀ + ∫M dφ is exactly quadratic over each 45° piece,
+    # which DOP853 takes in one step. Between 45° and 90° M falls from 94 to -91
+    # N·m: E humps 18.7 J above its ends there, higher than every knot's E, though
+    # both ends lie below the knot at 180° (E₀ + 18.06 J). At 100 rad/s and more
+    # each piece is one step, sampled by its curvature's bound (its ends alone
+    # would leave it out: 100.18 rad/s against 100.27). By hand: the hump
+    # at M = 0, E₀ + 8.247 + 94·(π/4)(94/185)/2 J (ΣM over a turn is 0: E₀ each turn).
+    module = PROBLEMS["mechanism"].load()
+    values = [-73.0, 94.0, -91.0, 50.0, 13.0, -77.0, 23.0, 61.0, -73.0]
+    data = {
+        "problem": "mechanism",
+        "title": "a hump inside a piece",
+        "torque": {"angles_deg": list(range(0, 361, 45)), "values": values},
+        "inertia": {"value": 1.0},
+        "motion": {"start_speed": 100.0, "revolutions": 3.0, "steps_per_revolution": 8},
+    }
+    model = validate(module.Case, CaseText(CASES / "x.toml", "", data))
+    speeds = np.array([100.0, 110.0])
+    with np.errstate(all="ignore"):
+        out = module.sweep(model, {"motion.start_speed": speeds})
+    quarter = math.pi / 4
+    at_45 = (-73.0 + 94.0) / 2 * quarter
+    hump = at_45 + 94.0 * quarter * (94.0 / 185.0) / 2
+    expected = np.sqrt(2.0 * (0.5 * speeds**2 + hump))
+    assert not out[DECLINED].any()
+    assert np.allclose(out["max_speed"], expected, rtol=1e-10, atol=0.0), (
+        out["max_speed"] - expected
+    )
+
+
 def test_the_curvature_bound_holds_on_random_extensions():
     # The sampling of a step rests on |d²(E/I)/dx²| <= _curvature(...): checked
     # against second differences on a fine grid of random extensions and lines of I.

@@ -3,6 +3,7 @@ from the reference's steps as they are taken."""
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from typing import Any
 
 from mdcalc.problems.mechanism.case import TWO_PI
@@ -153,30 +154,42 @@ class Best:
             self.below[r] = np.where(first, last.width[r], self.below[r])
         self.waits[r] = True
 
-    def around(self, rows: Any, angle: Any) -> Any:
-        """The extension that holds ``angle`` of each row: the best step's, or a
-        neighbour's just outside it."""
+    def around(self, rows: Any) -> Any:
+        """A function of an angle a row: the extension that holds it, the best
+        step's, or a neighbour's just outside it (for the golden search: the three
+        are gathered once)."""
         import numpy as np
 
         from mdcalc.core.block_ode import Dense
 
         best = self.pieces["best"].take(rows)
-        chosen = best
-        for which, outside in (
-            ("previous", angle < best.t_old),
-            ("next", angle > best.t_old + best.h),
-        ):
-            if which not in self.pieces:
-                continue
-            other = self.pieces[which].take(rows)
-            use = outside & np.isfinite(other.h)
-            chosen = Dense(
-                np.where(use, other.t_old, chosen.t_old),
-                np.where(use, other.h, chosen.h),
-                np.where(use[:, None], other.y_old, chosen.y_old),
-                np.where(use[None, :, None], other.F, chosen.F),
+        nothing = Dense(np.full(rows.size, np.nan), np.full(rows.size, np.nan), best.y_old, best.F)
+        previous, after = (
+            self.pieces[which].take(rows) if which in self.pieces else nothing
+            for which in ("previous", "next")
+        )
+        stack = [previous, best, after]
+        t_old = np.stack([d.t_old for d in stack])
+        h = np.stack([d.h for d in stack])
+        y_old = np.stack([d.y_old for d in stack])  # (3, m, 1)
+        F = np.stack([d.F for d in stack])  # (3, 7, m, 1)
+        line = np.arange(rows.size)
+        before, beyond = np.isfinite(previous.h), np.isfinite(after.h)
+
+        def extension(angle: Any) -> Any:
+            which = np.where(
+                (angle < best.t_old) & before,
+                0,
+                np.where((angle > best.t_old + best.h) & beyond, 2, 1),
             )
-        return chosen
+            return Dense(
+                t_old[which, line],
+                h[which, line],
+                y_old[which, line],
+                F[which, :, line].swapaxes(0, 1),
+            )
+
+        return extension
 
 
 def keep(pieces: dict[str, Any], which: str, n: int, rows: Any, dense: Any) -> None:
@@ -218,6 +231,23 @@ def energy_only(dense: Any) -> Any:
     return Dense(dense.t_old, dense.h, dense.y_old[:, :1], dense.F[:, :, :1])
 
 
+@dataclass(frozen=True)
+class _Step:
+    """A step of the last revolution kept for sampling: its rows, their extension
+    (energy only) and piece, the span sampled and its samples' count, ω at its ends
+    (2, m), and how far ω²/2 may rise above the higher end between them (inf where
+    no bound is)."""
+
+    rows: Any
+    dense: Any
+    piece: Piece | None
+    low: Any
+    high: Any
+    count: Any
+    at_ends: Any
+    reach: Any
+
+
 class Extremes:
     """The largest and smallest ω over [first, end] and t at ``first``, from the
     steps' continuous extensions: sampled at SAMPLES_A_STEP + 1 points a step or
@@ -235,11 +265,15 @@ class Extremes:
         self.t_first = np.where(first <= start, 0.0, np.nan)
         self.best = {sign: Best(n, sign) for sign in (1.0, -1.0)}
         self.last = Last(n)
+        self.steps: list[_Step] = []  # the last revolution's, as taken
         fixed = formulas.inertia_formula is None and formulas.inertia_table is None
         value = formulas.inertia_value
         self.constant = np.broadcast_to(np.asarray(value, dtype=float), (n,)) if fixed else None
 
     def see(self, step: Any) -> None:
+        """Keep a step of the last revolution, to be sampled once the revolution is
+        done (:meth:`values`), with ω at its ends and, where I is a line over it, the
+        bounds of ω between them."""
         import numpy as np
 
         rows = step.rows
@@ -260,6 +294,11 @@ class Extremes:
         count = np.ceil((high - low) / (TWO_PI / GRID_POINTS) * (1.0 - 1e-12))
         piece = step.rhs if isinstance(step.rhs, Piece) else None
         line = self._inertia(r, piece, dense.t_old)
+        here = energy_only(dense)
+        ends = np.stack([low, high])
+        at_ends = speed(self.formulas, self.base, self.start, r, here, ends,
+                        None if piece is None else piece.inertia_at(r, ends))  # fmt: skip
+        reach = np.full(r.size, np.inf)  # ω²/2 above the higher end (below the lower)
         if line is not None:
             inertia, slope = line
             bound = _curvature(dense, inertia, slope)
@@ -267,31 +306,77 @@ class Extremes:
             x = np.sqrt(8.0 * SAMPLING_TOLERANCE * scale / bound)  # samples apart in x
             needed = np.ceil((high - low) / dense.h / x)
             count = np.where(np.isfinite(needed), np.minimum(needed, count), count)
+            with np.errstate(all="ignore"):
+                reach = np.where(
+                    np.isfinite(bound), bound / 8.0 * ((high - low) / dense.h) ** 2, np.inf
+                )
         count = np.maximum(count, SAMPLES_A_STEP).astype(np.int64)
+        self.steps.append(_Step(r, here, piece, low, high, count, at_ends, reach))
+
+    def _sample(self, step: _Step, chosen: Any) -> dict[float, tuple[Any, Any]]:
+        """The best sample of each chosen row of a kept step (the index into its
+        rows), the largest and the smallest ω: value and index among its samples."""
+        import numpy as np
+
+        r, count = step.rows[chosen], step.count[chosen]
+        low, high, dense = step.low[chosen], step.high[chosen], step.dense.take(chosen)
         width = (high - low) / count
-        here = energy_only(dense)
         m = np.arange(r.size)
         found = {
             sign: (np.full(r.size, np.nan), np.zeros(r.size, dtype=np.int64)) for sign in self.best
         }
-        chunk = max(1, SAMPLE_CELLS // r.size)  # samples at a time, for the cache
-        most = int(count.max())
+        chunk = max(1, SAMPLE_CELLS // max(r.size, 1))  # samples at a time, for the cache
+        most = int(count.max(initial=0))
         for begin in range(0, most + 1, chunk):
             index = np.minimum(np.arange(begin, min(begin + chunk, most + 1))[:, None], count)
             angles = np.where(index == count, high, low + width * index)  # (k, m)
-            inertia = None if piece is None else piece.inertia_at(r, angles)  # its line
+            inertia = None if step.piece is None else step.piece.inertia_at(r, angles)  # its line
             omega = speed(self.formulas, self.base, self.start, r, dense, angles, inertia)
             for sign, (value, where) in found.items():
                 j = np.argmax(omega if sign > 0 else -omega, axis=0)
                 v = omega[j, m]
                 better = np.isnan(value) | (sign * v > sign * value)
                 value[better], where[better] = v[better], index[j, m][better]
-        for sign, best in self.best.items():
-            value, where = found[sign]
-            angle = np.where(where == count, high, low + width * where)
-            best.fill_next(r, here, width)
-            best.offer(r, value, angle, where, count, width, here, self.last)
-        self.last.put(r, here, width)
+        return found
+
+    def _replay(self) -> None:
+        """Each kept step in turn, as the integration took them: sampled where it may
+        hold the largest or the smallest ω of its row's revolution, that is where ω²/2
+        between its ends may rise above (fall below) the best of all the steps' ends
+        by its curvature's bound; every step kept in the best's neighbours and
+        spacings. A step that is not sampled holds no sample as good as the best
+        end, so the best sample, and all that follows from it, are those of every
+        step sampled."""
+        import numpy as np
+
+        n = np.size(self.first)
+        top, bottom = np.full(n, -np.inf), np.full(n, np.inf)
+        for step in self.steps:
+            top[step.rows] = np.fmax(top[step.rows], np.max(step.at_ends, axis=0))
+            bottom[step.rows] = np.fmin(bottom[step.rows], np.min(step.at_ends, axis=0))
+        for step in self.steps:
+            r = step.rows
+            with np.errstate(all="ignore"):
+                # in ω²/2, as the bound; a hair of room for the rounding of the squares
+                high = 0.5 * np.max(step.at_ends, axis=0) ** 2 + step.reach
+                low = 0.5 * np.min(step.at_ends, axis=0) ** 2 - step.reach
+                chosen = ~(high < 0.5 * top[r] ** 2 * (1.0 - 1e-12)) | ~(
+                    low > 0.5 * bottom[r] ** 2 * (1.0 + 1e-12)
+                )
+            width = (step.high - step.low) / step.count
+            for best in self.best.values():
+                best.fill_next(r, step.dense, width)
+            picked = np.flatnonzero(chosen)
+            if picked.size:
+                found = self._sample(step, picked)
+                for sign, best in self.best.items():
+                    value, where = found[sign]
+                    count, low_p, high_p = step.count[picked], step.low[picked], step.high[picked]
+                    angle = np.where(where == count, high_p, low_p + width[picked] * where)
+                    best.offer(r[picked], value, angle, where, count, width[picked],
+                               step.dense.take(picked), self.last)  # fmt: skip
+            self.last.put(r, step.dense, width)
+        self.steps = []
 
     def _inertia(self, rows: Any, piece: Piece | None, at: Any) -> tuple[Any, Any] | None:
         """I at ``at`` and its slope in φ over the step of each row: the piece's line,
@@ -310,20 +395,26 @@ class Extremes:
 
         from mdcalc.core.search import golden_maximum
 
+        self._replay()
         n = np.size(self.first)
         rows = np.flatnonzero(self.has & np.isfinite(self.best[1.0].value))
         out: dict[str, Any] = {}
         if not rows.size:
             nothing = np.full(n, np.nan)
             return dict.fromkeys(FLUCTUATION_KEYS, nothing)
+        scene = self.formulas.scene(rows, self.base)
         for key, best in (("max_speed", self.best[1.0]), ("min_speed", self.best[-1.0])):
             sign = best.sign
             low = np.maximum(best.angle[rows] - best.below[rows], self.first[rows])
             high = np.minimum(best.angle[rows] + best.above[rows], self.end[rows])
 
-            def f(angle: Any, best: Best = best, sign: float = sign) -> Any:
-                dense = best.around(rows, angle)
-                return sign * speed(self.formulas, self.base, self.start, rows, dense, angle)
+            extension = best.around(rows)
+
+            def f(angle: Any, extension: Any = extension, sign: float = sign) -> Any:
+                inertia = scene.inertia(angle)
+                return sign * speed(
+                    self.formulas, self.base, self.start, rows, extension(angle), angle, inertia
+                )
 
             refined = golden_maximum(f, low, high, GOLDEN_ITERATIONS)
             result = np.full(n, np.nan)
