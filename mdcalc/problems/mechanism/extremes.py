@@ -23,6 +23,11 @@ SAMPLES_A_STEP = 8
 SAMPLING_TOLERANCE = 2e-7
 #: Sample points × rows evaluated at a time (arrays that stay in the cache).
 SAMPLE_CELLS = 32_768
+#: Numbers kept of the steps not yet sampled (their rows × KEPT_A_ROW): a turn of
+#: thousands of small steps is sampled in parts, each by the best ends seen so far
+#: (no larger than the turn's: as rigorous, if less sparing).
+KEPT_CELLS = 2**22
+KEPT_A_ROW = 16
 #: Golden-section iterations of an extreme (the single scene takes 60): its bracket,
 #: from the best sample's neighbour to neighbour (a few hundredths of a radian at
 #: most), shrinks 0.618⁴⁰ = 4·10⁻⁹ times, to about 2·10⁻¹⁰ rad, where ω is flat
@@ -265,7 +270,10 @@ class Extremes:
         self.t_first = np.where(first <= start, 0.0, np.nan)
         self.best = {sign: Best(n, sign) for sign in (1.0, -1.0)}
         self.last = Last(n)
-        self.steps: list[_Step] = []  # the last revolution's, as taken
+        self.steps: list[_Step] = []  # the last revolution's, as taken, not yet sampled
+        self.kept = 0  # their cells
+        # the largest and least ω at the ends of the steps seen so far
+        self.top, self.bottom = np.full(n, -np.inf), np.full(n, np.inf)
         fixed = formulas.inertia_formula is None and formulas.inertia_table is None
         value = formulas.inertia_value
         self.constant = np.broadcast_to(np.asarray(value, dtype=float), (n,)) if fixed else None
@@ -311,7 +319,12 @@ class Extremes:
                     np.isfinite(bound), bound / 8.0 * ((high - low) / dense.h) ** 2, np.inf
                 )
         count = np.maximum(count, SAMPLES_A_STEP).astype(np.int64)
+        self.top[r] = np.fmax(self.top[r], np.max(at_ends, axis=0))
+        self.bottom[r] = np.fmin(self.bottom[r], np.min(at_ends, axis=0))
         self.steps.append(_Step(r, here, piece, low, high, count, at_ends, reach))
+        self.kept += r.size * KEPT_A_ROW
+        if self.kept > KEPT_CELLS:  # many small steps: sampled by what is known so far
+            self._replay()
 
     def _sample(self, step: _Step, chosen: Any) -> dict[float, tuple[Any, Any]]:
         """The best sample of each chosen row of a kept step (the index into its
@@ -342,18 +355,15 @@ class Extremes:
     def _replay(self) -> None:
         """Each kept step in turn, as the integration took them: sampled where it may
         hold the largest or the smallest ω of its row's revolution, that is where ω²/2
-        between its ends may rise above (fall below) the best of all the steps' ends
-        by its curvature's bound; every step kept in the best's neighbours and
-        spacings. A step that is not sampled holds no sample as good as the best
-        end, so the best sample, and all that follows from it, are those of every
-        step sampled."""
+        between its ends may rise above (fall below) the best of the steps' ends seen
+        so far (all of the revolution's, unless KEPT_CELLS was reached) by its
+        curvature's bound; every step kept in the best's neighbours and spacings. A
+        step that is not sampled holds no sample as good as a step's end, so the
+        best sample, and all that follows from it, are those of every step
+        sampled."""
         import numpy as np
 
-        n = np.size(self.first)
-        top, bottom = np.full(n, -np.inf), np.full(n, np.inf)
-        for step in self.steps:
-            top[step.rows] = np.fmax(top[step.rows], np.max(step.at_ends, axis=0))
-            bottom[step.rows] = np.fmin(bottom[step.rows], np.min(step.at_ends, axis=0))
+        top, bottom = self.top, self.bottom
         for step in self.steps:
             r = step.rows
             with np.errstate(all="ignore"):
@@ -376,7 +386,7 @@ class Extremes:
                     best.offer(r[picked], value, angle, where, count, width[picked],
                                step.dense.take(picked), self.last)  # fmt: skip
             self.last.put(r, step.dense, width)
-        self.steps = []
+        self.steps, self.kept = [], 0
 
     def _inertia(self, rows: Any, piece: Piece | None, at: Any) -> tuple[Any, Any] | None:
         """I at ``at`` and its slope in φ over the step of each row: the piece's line,
