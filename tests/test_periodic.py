@@ -1325,9 +1325,39 @@ def test_a_peak_beside_the_periods_end_has_its_neighbour_across_it(offset: float
     def observe(rows: np.ndarray, tau: np.ndarray) -> np.ndarray:
         return shift[rows][:, None] + np.cos(2.0 * math.pi * (tau - peak_at))
 
+    brackets = []
+
     def rate(rows: np.ndarray, tau: np.ndarray) -> np.ndarray:
+        brackets.append(len(rows))
         return -2.0 * math.pi * np.sin(2.0 * math.pi * (tau - peak_at)) + 0.0 * rows[:, None]
 
     values, times = periodic.periodic_maxima(observe, rate, period, samples, np.arange(2))
     assert values[low] == pytest.approx(1.0, abs=1e-12)
     assert times[low] == pytest.approx(peak_at % 1.0, abs=1e-9)
+    # each row's one sampled peak, bracketed once (the last sample) or twice (the
+    # first: on either side of the period's end), and no other sample taken for one
+    assert brackets[0] == (2 if offset > 0 else 4)
+
+
+@pytest.mark.parametrize(("condition", "meets"), [(3e11, False), (3e12, True)])
+def test_modes_whose_1_norm_condition_passes_1e12_take_the_matrix_exponential(
+    monkeypatch: pytest.MonkeyPatch, condition: float, meets: bool
+) -> None:
+    # the modes' 1-norm condition, ‖V‖₁·‖V⁻¹‖₁ from the one inverse, decides with
+    # the eigenvalues' distance whether a row's state is a modal sum or e^{Aτ}: a V
+    # of condition 3e12 (distinct eigenvalues) takes e^{Aτ}, 3e11 the modes
+    from mdcalc.core.periodic import closed
+
+    system = _two_coordinate_block(np.random.default_rng(2), 2)[1]
+    real_modes = closed._modes
+
+    def modes(first, mass, damping, stiffness):
+        eigenvalues, _, sure = real_modes(first, mass, damping, stiffness)
+        vectors = np.diag([1.0, 1.0, 1.0, 1.0 / condition]).astype(complex)
+        return eigenvalues, np.broadcast_to(vectors, (len(first), 4, 4)).copy(), sure
+
+    monkeypatch.setattr(closed, "_modes", modes)
+    block = closed.exact_block(closed.block_of_one(system))
+    assert closed._closest(block.eigenvalues)[0] > closed.MEET
+    assert block.failure[0] == periodic.SOLVED
+    assert bool(block.meet[0]) is meets

@@ -343,7 +343,8 @@ def exact_block(system: RampSystem, size: int = 1) -> PeriodicBlock:
     meet = ~broken & (_closest(eigenvalues) < MEET)
     # the 1-norm condition, from V⁻¹ (the 2-norm's SVD cost three times as much),
     # which gives the modal coordinates below too (rows that meet invert I: a
-    # repeated eigenvalue is the one way to a singular V)
+    # repeated eigenvalue is the usual way to a singular V; any other row found
+    # singular is inverted alone, its condition NaN: it meets)
     plain = meet | ~np.all(np.isfinite(vectors), axis=(1, 2))
     inverse = _inverse(np.where(plain[:, None, None], np.eye(2 * n), vectors))
     with np.errstate(all="ignore"):
@@ -550,9 +551,9 @@ def _failure(code: int, eigenvalues: np.ndarray, t: float) -> ArithmeticError:
     )
 
 
-def exact_periodic(system: RampSystem) -> Periodic:
-    """The closed form of one system: a block of one."""
-    batch = replace(
+def block_of_one(system: RampSystem) -> RampSystem:
+    """One system as a block of one row (its arrays with a leading axis)."""
+    return replace(
         system,
         mass=system.mass[None],
         damping=system.damping[None],
@@ -563,4 +564,8 @@ def exact_periodic(system: RampSystem) -> Periodic:
         slope=np.array([system.slope]),
         period=np.array([system.period]),
     )
-    return exact_block(batch).row(0)
+
+
+def exact_periodic(system: RampSystem) -> Periodic:
+    """The closed form of one system: a block of one."""
+    return exact_block(block_of_one(system)).row(0)

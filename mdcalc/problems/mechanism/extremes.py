@@ -152,6 +152,8 @@ class Best:
         self.below[r] = self.above[r] = width[at]
         self.at_end[r] = index[at] == count[at]
         self._store("best", r, here.take(at))
+        if "next" in self.pieces:  # an earlier best's, until the step after this one
+            self.pieces["next"].h[r] = np.nan
         if "last" in last.pieces:
             previous = last.pieces["last"].take(r)
             self._store("previous", r, previous)
@@ -231,9 +233,18 @@ class Last:
 
 
 def energy_only(dense: Any) -> Any:
+    """The extension of the energy alone, copied (a view would keep the time's
+    numbers of every kept step alive)."""
+    import numpy as np
+
     from mdcalc.core.block_ode import Dense
 
-    return Dense(dense.t_old, dense.h, dense.y_old[:, :1], dense.F[:, :, :1])
+    return Dense(
+        dense.t_old,
+        dense.h,
+        np.ascontiguousarray(dense.y_old[:, :1]),
+        np.ascontiguousarray(dense.F[:, :, :1]),
+    )
 
 
 @dataclass(frozen=True)
