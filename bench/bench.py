@@ -316,11 +316,13 @@ RATE_SCENES = [
     ("acceleration adhesion", "acceleration/high_power.toml", "vehicle.mass"),
 ]
 
-#: Sizes of a kernel scene's two studies where 10⁶ samples would take minutes.
+#: Sizes of a kernel scene's two studies where 10⁶ samples would take minutes (the
+#: mechanism with tables at 10⁴ and 5·10⁴: at 10³ and 5·10³ the pool's pieces are
+#: 512 rows, a third of the rate of pieces of thousands, which a large study has).
 KERNEL_SIZES = {
     "resonance Mathieu": (10_000, 100_000),
     "variator drive": (10_000, 100_000),
-    "mechanism tables": (1_000, 5_000),
+    "mechanism tables": (10_000, 50_000),
 }
 
 
@@ -329,7 +331,8 @@ def study_rates(folder: Path) -> None:
     problem (the study's own sampling_seconds at two sizes, so set-up is left out),
     and its ratio to braking's kernel in the same run. A kernel problem is measured
     at 10⁵ and 10⁶ samples (KERNEL_SIZES: fewer for the Mathieu points, 8 ODE runs a
-    sample), one that runs sample by sample at 8 and 24 (2 jobs)."""
+    sample, the variator's drive and a mechanism with tables), one that runs sample
+    by sample at 8 and 24 (2 jobs)."""
     import tomllib
 
     print("study rates (marginal samples/s between two sizes; one key ±5 %, default results):")
