@@ -36,7 +36,7 @@ Its files:
 - ``pieces.py``: The right-hand side of a mechanism's block on one piece between the tables'
   knots: there I and every speed column of M are straight lines.
 - ``extremes.py``: The extremes of ω over a mechanism block's last revolution, from the
-  reference's steps as they are taken.
+  reference's steps, kept as they are taken and sampled where they can hold one.
 - ``solve.py``: The solver: the Methods, and the result.
 - ``report.py``: The report: the sections a mechanism scene needs.
 - ``charts.py``: The charts of ``--plot``: speed and torque against the angle (data only).

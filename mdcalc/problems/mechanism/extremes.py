@@ -1,5 +1,6 @@
 """The extremes of ω over a mechanism block's last revolution (:mod:`~.kernel`),
-from the reference's steps as they are taken."""
+from the reference's steps, kept as they are taken and sampled where they can hold
+one."""
 
 from __future__ import annotations
 
