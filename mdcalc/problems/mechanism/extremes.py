@@ -379,11 +379,12 @@ class Extremes:
         for step in self.steps:
             r = step.rows
             with np.errstate(all="ignore"):
-                # in ω²/2, as the bound; a hair of room for the rounding of the squares
-                high = 0.5 * np.max(step.at_ends, axis=0) ** 2 + step.reach
-                low = 0.5 * np.min(step.at_ends, axis=0) ** 2 - step.reach
-                chosen = ~(high < 0.5 * top[r] ** 2 * (1.0 - 1e-12)) | ~(
-                    low > 0.5 * bottom[r] ** 2 * (1.0 + 1e-12)
+                # ω²/2 at most and at least over the step, as the bound has it; a hair
+                # of room for the rounding of the squares
+                most = 0.5 * np.max(step.at_ends, axis=0) ** 2 + step.reach
+                least = 0.5 * np.min(step.at_ends, axis=0) ** 2 - step.reach
+                chosen = ~(most < 0.5 * top[r] ** 2 * (1.0 - 1e-12)) | ~(
+                    least > 0.5 * bottom[r] ** 2 * (1.0 + 1e-12)
                 )
             width = (step.high - step.low) / step.count
             for best in self.best.values():
@@ -393,8 +394,8 @@ class Extremes:
                 found = self._sample(step, picked)
                 for sign, best in self.best.items():
                     value, where = found[sign]
-                    count, low_p, high_p = step.count[picked], step.low[picked], step.high[picked]
-                    angle = np.where(where == count, high_p, low_p + width[picked] * where)
+                    count, low, high = step.count[picked], step.low[picked], step.high[picked]
+                    angle = np.where(where == count, high, low + width[picked] * where)
                     best.offer(r[picked], value, angle, where, count, width[picked],
                                step.dense.take(picked), self.last)  # fmt: skip
             self.last.put(r, step.dense, width)
