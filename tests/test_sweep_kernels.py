@@ -241,6 +241,54 @@ def test_a_heavy_kernel_goes_to_the_pool_in_large_equal_pieces():
     assert [len(p) for p in _equal_pieces(np.arange(5), 8)] == [5]
 
 
+#: Eight arrays of 1 MB, filled and freed 50 times (as the stages of a block's
+#: integration step are): with glibc's defaults each round gets fresh pages from the
+#: system (about 10⁵ page faults here), with steady_heap none.
+HEAP_ROUNDS = """
+import resource, sys
+import numpy as np
+if sys.argv[1] == "steady":
+    from mdcalc.runs.kernel import steady_heap
+    steady_heap()
+[np.ones(1 << 17) for _ in range(8)]  # the heap grown once
+before = resource.getrusage(resource.RUSAGE_SELF).ru_minflt
+for _ in range(50):
+    arrays = [np.ones(1 << 17) for _ in range(8)]
+    del arrays
+print(resource.getrusage(resource.RUSAGE_SELF).ru_minflt - before)
+"""
+
+
+def test_a_kernel_process_keeps_its_freed_arrays_for_the_next_ones():
+    import subprocess
+    import sys
+
+    def faults(how: str) -> int:
+        done = subprocess.run([sys.executable, "-c", HEAP_ROUNDS, how],
+                              capture_output=True, text=True, check=True)  # fmt: skip
+        return int(done.stdout)
+
+    plain = faults("plain")
+    if plain < 10_000:
+        pytest.skip(f"this C library keeps freed memory by itself ({plain} page faults)")
+    assert faults("steady") < 1_000 < plain
+
+
+def test_a_kernel_block_keeps_the_heap_steady_in_its_process(monkeypatch):
+    import tomllib
+
+    from mdcalc.runs import kernel
+
+    calls = []
+    monkeypatch.setattr(kernel, "steady_heap", lambda: calls.append(1))
+    path = CASES / "braking" / "dry.toml"
+    scene = tomllib.loads(path.read_text("utf-8"))
+    scene.pop("expect", None)
+    run = kernel.KernelChunk("braking", path, scene, ["vehicle.mass"], ["braking_force"])
+    part = run(np.array([[1000.0], [2000.0]]))
+    assert calls and part is not None and part["braking_force"][1] > part["braking_force"][0]
+
+
 def test_the_pool_stream_of_pieces_runs_to_its_end(monkeypatch):
     # A pool's stream left suspended at its last piece kept the pool's manager
     # thread alive to the interpreter's exit, where Python 3.11's exit hook raced it
