@@ -353,6 +353,91 @@ def test_the_steps_that_cannot_hold_an_extreme_are_not_sampled(monkeypatch, cell
     assert few < (0.4 if cells > 10**6 else 0.8) * sum(sampled), (few, sum(sampled))
 
 
+def test_the_samples_between_coarse_ones_are_taken_only_where_they_may_pass_them(
+    monkeypatch,
+):
+    # A step is sampled at every COARSE_STRIDE-th point first, then between two of
+    # them only where the curvature's bound lets ω pass their best: every number is
+    # the same, bit for bit, as with every sample taken (a stride of 1), on the
+    # tabulated press and on the review's scenes with humps of ω (formulas of I
+    # without a bound among them), and the press takes far fewer samples.
+    from mdcalc.problems.mechanism import extremes
+
+    module = PROBLEMS["mechanism"].load()
+    cells: list[int] = []
+    real = extremes.Extremes._speeds
+
+    def counted(self, step, r, dense, low, high, width, count, index):
+        cells.append(index.size)
+        return real(self, step, r, dense, low, high, width, count, index)
+
+    monkeypatch.setattr(extremes.Extremes, "_speeds", counted)
+    _, _, press, _ = _case("mechanism", "mechanism/tabulated_press.toml")
+    scenes = [(press, {"motion.start_speed": np.linspace(60.0, 100.0, 7),
+                       "motion.revolutions": np.linspace(3.0, 4.5, 7)})]  # fmt: skip
+    scenes += list(_balanced_scenes(5, 8))
+    strides = (1, 3, extremes.COARSE_STRIDE)
+    press_cells = {}
+    for number, (data, grid) in enumerate(scenes):
+        model = validate(module.Case, CaseText(CASES / "x.toml", "", data))
+        out = {}
+        for stride in strides:
+            monkeypatch.setattr(extremes, "COARSE_STRIDE", stride)
+            cells.clear()
+            with np.errstate(all="ignore"):
+                out[stride] = module.sweep(model, grid)
+            if number == 0:
+                press_cells[stride] = sum(cells)
+        for stride in strides[1:]:
+            for key, value in out[1].items():
+                same = np.array_equal(
+                    np.asarray(value), np.asarray(out[stride][key]), equal_nan=True
+                )
+                assert same, (number, stride, key)
+    assert press_cells[strides[-1]] < 0.4 * press_cells[1], press_cells
+
+
+def test_a_best_sample_between_coarse_ones_far_from_their_best_is_found(monkeypatch):
+    # E/I over a step of 64 samples (I = 1) with two humps: 1.0 at sample 48, a
+    # coarse one (every 8th), and 1.001 at sample 20, between coarse samples of 0.99.
+    # Only the curvature's bound over a stride brings the span from 16 to 24 in
+    # (its ends alone would leave it out), and sample 20 is the best, as with every
+    # sample taken.
+    from types import SimpleNamespace
+
+    from mdcalc.core.block_ode import Dense
+    from mdcalc.problems.mechanism import extremes
+    from mdcalc.problems.mechanism.pieces import Piece
+
+    powers = np.arange(8)
+    points = [(0.3125, 1.001), (0.25, 0.99), (0.375, 0.99), (0.75, 1.0), (0.0, 0.9), (1.0, 0.9)]
+    rows = [x**powers for x, _ in points] + [powers * x ** np.maximum(powers - 1, 0)
+                                               for x in (0.3125, 0.75)]  # fmt: skip
+    c = np.linalg.solve(np.array(rows), [v for _, v in points] + [0.0, 0.0])
+    x = np.linspace(0.0, 1.0, 65)
+    assert np.argmax(np.polyval(c[::-1], x)) == 20 and np.argmax(np.polyval(c[::-1], x[::8])) == 6
+
+    def extension(terms):
+        return Dense(np.zeros(1), np.ones(1), np.array([[c[0]]]), np.reshape(terms, (7, 1, 1)))
+
+    basis = np.stack([extension(np.eye(7)[j]).at(x[:, None], 0)[:, 0] - c[0] for j in range(7)], 1)
+    terms = np.linalg.lstsq(basis, np.polyval(c[::-1], x) - c[0], rcond=None)[0]
+    dense = extension(terms)
+    one, nothing = np.ones(1), np.zeros(1)
+    piece = Piece(nothing, nothing, (one, nothing), (nothing, nothing), None)
+    reach = extremes._curvature(dense, one, nothing) / 8.0
+    step = extremes._Step(np.array([0]), dense, piece, nothing, one, np.array([64]), None, reach)
+    kept = extremes.Extremes.__new__(extremes.Extremes)
+    kept.start, kept.base = np.array([-1.0]), SimpleNamespace(start_speed=nothing)
+    kept.formulas, kept.best = None, {1.0: None, -1.0: None}
+    found = kept._sample(step, np.array([0]))
+    monkeypatch.setattr(extremes, "COARSE_STRIDE", 1)
+    every = kept._sample(step, np.array([0]))
+    assert found[1.0][1][0] == every[1.0][1][0] == 20
+    for sign in (1.0, -1.0):
+        assert found[sign][0][0] == every[sign][0][0] and found[sign][1][0] == every[sign][1][0]
+
+
 def _every_step_in_turn(self):
     """The kernel's sampling before the steps were kept: each step of the last turn
     sampled whole as it came, then offered, then put as the last one."""

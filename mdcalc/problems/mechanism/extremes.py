@@ -29,6 +29,9 @@ SAMPLE_CELLS = 32_768
 #: (no larger than the turn's: as rigorous, if less sparing).
 KEPT_CELLS = 2**22
 KEPT_A_ROW = 16
+#: Every this many samples of a kept step are taken first, the rest only between
+#: those where ω may pass their best (:meth:`Extremes._sample`).
+COARSE_STRIDE = 8
 #: Golden-section iterations of an extreme (the single scene takes 60): its bracket,
 #: from the best sample's neighbour to neighbour (a few hundredths of a radian at
 #: most), shrinks 0.618⁴⁰ = 4·10⁻⁹ times, to about 2·10⁻¹⁰ rad, where ω is flat
@@ -340,29 +343,75 @@ class Extremes:
 
     def _sample(self, step: _Step, chosen: Any) -> dict[float, tuple[Any, Any]]:
         """The best sample of each chosen row of a kept step (the index into its
-        rows), the largest and the smallest ω: value and index among its samples."""
+        rows), the largest and the smallest ω: value and index among its samples (the
+        first of equal ones). Every COARSE_STRIDE-th sample first; then the samples
+        between two of them only where the curvature's bound lets ω there pass the
+        best of those (every sample where there is no bound): the same best sample,
+        bit for bit, as all of them."""
         import numpy as np
 
         r, count = step.rows[chosen], step.count[chosen]
         low, high, dense = step.low[chosen], step.high[chosen], step.dense.take(chosen)
         width = (high - low) / count
-        m = np.arange(r.size)
-        found = {
-            sign: (np.full(r.size, np.nan), np.zeros(r.size, dtype=np.int64)) for sign in self.best
-        }
-        chunk = max(1, SAMPLE_CELLS // max(r.size, 1))  # samples at a time, for the cache
-        most = int(count.max(initial=0))
-        for begin in range(0, most + 1, chunk):
-            index = np.minimum(np.arange(begin, min(begin + chunk, most + 1))[:, None], count)
-            angles = np.where(index == count, high, low + width * index)  # (k, m)
-            inertia = None if step.piece is None else step.piece.inertia_at(r, angles)  # its line
-            omega = speed(self.formulas, self.base, self.start, r, dense, angles, inertia)
-            for sign, (value, where) in found.items():
-                j = np.argmax(omega if sign > 0 else -omega, axis=0)
-                v = omega[j, m]
-                better = np.isnan(value) | (sign * v > sign * value)
-                value[better], where[better] = v[better], index[j, m][better]
+        spans = (count + COARSE_STRIDE - 1) // COARSE_STRIDE
+        coarse = np.minimum(
+            np.arange(int(spans.max(initial=0)) + 1)[:, None] * COARSE_STRIDE, count
+        )
+        omega = self._speeds(step, r, dense, low, high, width, count, coarse)
+        found = {sign: _first_best(omega, coarse, sign) for sign in self.best}
+        # ω²/2 between two coarse samples rises above the higher (falls below the
+        # lower) by at most the bound's reach over a stride; a hair of room for the
+        # rounding of the squares
+        with np.errstate(all="ignore"):
+            stride = np.minimum(COARSE_STRIDE / count, 1.0)
+            reach = step.reach[chosen] * stride**2
+            ends = omega[:-1], omega[1:]
+            most = 0.5 * np.maximum(*ends) ** 2 + reach
+            least = 0.5 * np.minimum(*ends) ** 2 - reach
+            top, bottom = found[1.0][0], found[-1.0][0]
+            may = ~(most < 0.5 * top**2 * (1.0 - 1e-12)) | ~(
+                least > 0.5 * bottom**2 * (1.0 + 1e-12)
+            )
+        # a row sampled before its start takes ω₀ there, which the bound does not know
+        may |= low <= self.start[r]
+        may &= coarse[1:] - coarse[:-1] > 1  # a span with samples inside it
+        span, row = np.nonzero(may.T)[::-1]
+        if not row.size:
+            return found
+        inside = np.minimum(coarse[span, row] + np.arange(1, COARSE_STRIDE)[:, None], count[row])
+        omega = self._speeds(step, r[row], dense.take(row), low[row], high[row], width[row],
+                             count[row], inside)  # fmt: skip
+        for sign, (value, where) in found.items():
+            v, i = _first_best(omega, inside, sign)
+            best = value.copy()
+            (np.maximum if sign > 0 else np.minimum).at(best, row, v)
+            # the first index of the best value: the coarse one's where it still is
+            # (and where a NaN is, which no sample passes)
+            passed = (best != value) & ~np.isnan(best)
+            where[passed] = np.iinfo(np.int64).max
+            tie = v == best[row]
+            np.minimum.at(where, row[tie], i[tie])
+            value[:] = np.where(np.isnan(value), value, best)
         return found
+
+    def _speeds(
+        self, step: _Step, r: Any, dense: Any, low: Any, high: Any, width: Any, count: Any,
+        index: Any,
+    ) -> Any:  # fmt: skip
+        """ω at the samples ``index`` (k, m) of the rows ``r`` of a kept step, in
+        parts that stay in the cache."""
+        import numpy as np
+
+        omega = np.empty(index.shape)
+        chunk = max(1, SAMPLE_CELLS // max(r.size, 1))
+        for begin in range(0, index.shape[0], chunk):
+            part = index[begin : begin + chunk]
+            angles = np.where(part == count, high, low + width * part)  # (k, m)
+            inertia = None if step.piece is None else step.piece.inertia_at(r, angles)  # its line
+            omega[begin : begin + chunk] = speed(
+                self.formulas, self.base, self.start, r, dense, angles, inertia
+            )
+        return omega
 
     def _replay(self) -> None:
         """Each kept step in turn, as the integration took them: sampled where it may
@@ -447,3 +496,13 @@ class Extremes:
         out["mean_speed_revolution"] = mean
         out["fluctuation"] = (out["max_speed"] - out["min_speed"]) / mean
         return out
+
+
+def _first_best(omega: Any, index: Any, sign: float) -> tuple[Any, Any]:
+    """The largest (``sign`` +1) or smallest ω of each column of ``omega`` (k, m) and
+    its sample index from ``index`` (k, m): the first of equal ones (a NaN, if any)."""
+    import numpy as np
+
+    j = np.argmax(omega if sign > 0 else -omega, axis=0)
+    m = np.arange(omega.shape[1])
+    return omega[j, m], index[j, m]
