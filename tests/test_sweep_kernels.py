@@ -428,6 +428,25 @@ def test_tiles_whose_keys_differ_leave_the_block_whole():
     assert in_tiles(kernel, None, {"x": np.arange(4.0)}, None, 4) is None  # one tile: whole
 
 
+def test_a_block_is_cut_into_tiles_of_equal_size():
+    # 21 845 rows (a third of a 64 Ki block) in tiles of at most 16 384: two of
+    # 10 923 and 10 922, not 16 384 and a small tile of 5461 at a lower rate
+    from mdcalc.input.model import in_tiles
+
+    sizes = []
+
+    def kernel(case, grid, wanted):
+        sizes.append(np.size(grid["x"]))
+        return {"x": np.asarray(grid["x"])}
+
+    out = in_tiles(kernel, None, {"x": np.arange(21_845.0)}, None, 16_384)
+    assert out is not None and np.array_equal(out["x"], np.arange(21_845.0))
+    assert sizes == [10_923, 10_922]
+    sizes.clear()
+    in_tiles(kernel, None, {"x": np.arange(65_536.0)}, None, 16_384)
+    assert sizes == [16_384] * 4
+
+
 def test_a_variator_drive_kernel_in_tiles_gives_each_row_its_own_numbers(monkeypatch):
     # where each sample has its own drive, the variator's kernel solves TILE_ROWS
     # samples a call: the numbers of the block computed whole, bit for bit

@@ -155,13 +155,16 @@ def in_tiles(
     the block holds no more than one tile, a tile's answer is None or the tiles' keys
     differ: the caller then decides): a kernel of many small arrays a row (a modal
     solution's tables, an ODE reference's stages) runs faster where they stay in the
-    processor's cache, and one with a large array a row fits in memory. Each row's
-    numbers are its own, so the answer is the same."""
+    processor's cache, and one with a large array a row fits in memory. The tiles are
+    of equal size (a block of 21 845 rows in two of 10 923, not 16 384 and 5461),
+    none above ``rows``. Each row's numbers are its own, so the answer is the same."""
     import numpy as np
 
     size = max([np.size(v) for v in grid.values()] + [1])
     if size <= rows:
         return None
+    tiles = -(-size // rows)
+    rows = -(-size // tiles)
     parts: list[dict[str, Any]] = []
     for first in range(0, size, rows):
         tile = {k: v if np.size(v) == 1 else v[first : first + rows] for k, v in grid.items()}
