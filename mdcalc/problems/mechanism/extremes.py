@@ -193,6 +193,8 @@ class Best:
                 0,
                 np.where((angle > best.t_old + best.h) & beyond, 2, 1),
             )
+            if not np.any(which != 1):  # every angle in its best step: no gathers
+                return best
             return Dense(
                 t_old[which, line],
                 h[which, line],
