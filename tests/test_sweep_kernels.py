@@ -274,6 +274,15 @@ def test_a_kernel_process_keeps_its_freed_arrays_for_the_next_ones():
     assert faults("steady") < 1_000 < plain
 
 
+def test_a_python_without_ctypes_leaves_the_heap_as_it_is(monkeypatch):
+    import sys
+
+    from mdcalc.runs.kernel import steady_heap
+
+    monkeypatch.setitem(sys.modules, "ctypes", None)  # import ctypes raises ImportError
+    assert steady_heap.__wrapped__() is None
+
+
 def test_a_kernel_block_keeps_the_heap_steady_in_its_process(monkeypatch):
     import tomllib
 
@@ -424,13 +433,13 @@ def test_tiles_whose_keys_differ_leave_the_block_whole():
 
     whole = in_tiles(kernel, None, {"x": np.arange(12.0), "y": 3.0}, None, 4)
     assert whole is not None and whole["double"].tolist() == [2.0 * k for k in range(12)]
-    assert in_tiles(kernel, None, {"x": np.arange(14.0)}, None, 5) is None
+    assert in_tiles(kernel, None, {"x": np.arange(15.0)}, None, 5) is None
     assert in_tiles(kernel, None, {"x": np.arange(4.0)}, None, 4) is None  # one tile: whole
 
 
 def test_a_block_is_cut_into_tiles_of_equal_size():
     # 21 845 rows (a third of a 64 Ki block) in tiles of at most 16 384: two of
-    # 10 923 and 10 922, not 16 384 and a small tile of 5461 at a lower rate
+    # 10 922 and 10 923, not 16 384 and a small tile of 5461 at a lower rate
     from mdcalc.input.model import in_tiles
 
     sizes = []
@@ -441,10 +450,18 @@ def test_a_block_is_cut_into_tiles_of_equal_size():
 
     out = in_tiles(kernel, None, {"x": np.arange(21_845.0)}, None, 16_384)
     assert out is not None and np.array_equal(out["x"], np.arange(21_845.0))
-    assert sizes == [10_923, 10_922]
+    assert sizes == [10_922, 10_923]
     sizes.clear()
     in_tiles(kernel, None, {"x": np.arange(65_536.0)}, None, 16_384)
     assert sizes == [16_384] * 4
+    for size, rows in ((10, 3), (699, 719), (700, 7), (701, 7), (13, 4)):
+        sizes.clear()
+        out = in_tiles(kernel, None, {"x": np.arange(float(size))}, None, rows)
+        assert (out is None) == (size <= rows)
+        if out is not None:
+            assert np.array_equal(out["x"], np.arange(float(size)))
+            assert len(sizes) == -(-size // rows) and max(sizes) - min(sizes) <= 1 <= min(sizes)
+            assert max(sizes) <= rows
 
 
 def test_a_variator_drive_kernel_in_tiles_gives_each_row_its_own_numbers(monkeypatch):

@@ -10,6 +10,7 @@ squaring it would overflow inside a solver. Field descriptions end with the unit
 
 from __future__ import annotations
 
+import itertools
 from typing import Any, ClassVar, get_args
 
 from pydantic import (
@@ -156,18 +157,19 @@ def in_tiles(
     differ: the caller then decides): a kernel of many small arrays a row (a modal
     solution's tables, an ODE reference's stages) runs faster where they stay in the
     processor's cache, and one with a large array a row fits in memory. The tiles are
-    of equal size (a block of 21 845 rows in two of 10 923, not 16 384 and 5461),
-    none above ``rows``. Each row's numbers are its own, so the answer is the same."""
+    of equal size, a row apart at most (a block of 21 845 rows in tiles of 10 922 and
+    10 923, not 16 384 and 5461), none above ``rows``. Each row's numbers are its
+    own, so the answer is the same."""
     import numpy as np
 
     size = max([np.size(v) for v in grid.values()] + [1])
     if size <= rows:
         return None
     tiles = -(-size // rows)
-    rows = -(-size // tiles)
+    ends = [size * k // tiles for k in range(tiles + 1)]  # sizes a row apart at most
     parts: list[dict[str, Any]] = []
-    for first in range(0, size, rows):
-        tile = {k: v if np.size(v) == 1 else v[first : first + rows] for k, v in grid.items()}
+    for first, last in itertools.pairwise(ends):
+        tile = {k: v if np.size(v) == 1 else v[first:last] for k, v in grid.items()}
         part = sweep(case, tile, wanted)
         if part is None or (parts and set(part) != set(parts[0])):
             return None  # (tiles that give different keys: the block whole, as asked)

@@ -39,14 +39,15 @@ def steady_heap() -> None:
     fresh pages each time: 2·10⁵ page faults in one block of 25 000 rows of
     tabulated_press.toml, a third of its time. A process then keeps up to 64 MB it
     has freed, below the peak its kernel reached anyway."""
-    import ctypes
     import sys
 
     if not sys.platform.startswith("linux"):
         return
     try:
+        import ctypes
+
         mallopt = ctypes.CDLL(None).mallopt  # the C library Python runs on
-    except (OSError, AttributeError):  # a C library without it
+    except (ImportError, OSError, AttributeError):  # no ctypes, or a C library without it
         return
     mallopt(M_TRIM_THRESHOLD, TRIM_BYTES)
     mallopt(M_MMAP_THRESHOLD, MMAP_BYTES)

@@ -349,7 +349,8 @@ class Extremes:
         first of equal ones). Every COARSE_STRIDE-th sample first; then the samples
         between two of them only where the curvature's bound lets ω there pass the
         best of those (every sample where there is no bound): the same best sample,
-        bit for bit, as all of them."""
+        bit for bit, as all of them (where ω is a NaN, the first NaN of the coarse
+        samples, not of all: such a row is left to the single scene)."""
         import numpy as np
 
         r, count = step.rows[chosen], step.count[chosen]
