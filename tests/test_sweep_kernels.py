@@ -354,6 +354,29 @@ def test_pieces_of_a_block_join_with_a_lost_piece_failing_only_its_rows():
     assert _joined([a, {"y": np.array([1.0]), DECLINED: np.array([False])}], [2, 1]) is None
 
 
+def test_pieces_that_span_blocks_are_cut_back_into_the_blocks():
+    # The pool's pieces run the blocks' rows end to end, in a multiple of the jobs,
+    # so that the jobs end together: a piece's answer is cut where a block ends, and
+    # a piece lost for good marks its rows in each block it spans.
+    from mdcalc.input.model import DECLINED
+    from mdcalc.runs.kernel import LOST, LostBlock, _Fragments, _joined, _split
+
+    pieces = _split(np.arange(13.0), 3)
+    assert [len(p) for p in pieces] == [4, 4, 5]
+
+    def answer(piece):
+        return {"x": 2.0 * piece, DECLINED: piece > 11}
+
+    answers = [answer(pieces[0]), LostBlock("lost"), answer(pieces[2])]
+    flow = _Fragments(iter(answers), [len(p) for p in pieces])
+    blocks = [_joined(*flow.take(n)) for n in (3, 6, 4)]
+    assert blocks[0]["x"].tolist() == [0.0, 2.0, 4.0] and LOST not in blocks[0]
+    assert blocks[1]["x"][:1].tolist() == [6.0] and np.isnan(blocks[1]["x"][1:5]).all()
+    assert blocks[1]["x"][5] == 16.0 and blocks[1][LOST].tolist() == [0, 1, 1, 1, 1, 0]
+    assert blocks[2]["x"].tolist() == [18.0, 20.0, 22.0, 24.0] and LOST not in blocks[2]
+    assert blocks[2][DECLINED].tolist() == [False, False, False, True]
+
+
 def test_value_at_finds_a_number_or_says_none():
     # the kernels' one question before they vary a key: a field, a list entry, a
     # table entry; None past a list's end, in a section the case leaves out, or for

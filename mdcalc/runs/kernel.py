@@ -8,7 +8,7 @@ import copy
 import functools
 import itertools
 import time
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -172,10 +172,13 @@ def kernel_parts(run: KernelChunk, blocks: Sequence[Any], mapper: Any) -> tuple[
     """Each block's kernel answer, in block order, and where the blocks ran ("" for
     this process). On the process pool two probes of :data:`PROBE` rows run here
     and time a row: a kernel whose block would take longer than HEAVY_BLOCK_SECONDS
-    (a modal solution and its maxima in time, an ODE reference) has its blocks cut
-    into pieces, run by the pool's processes and joined again per block: a piece
-    holds a job's share of the samples (PIECES_PER_JOB a job), at least PROBE rows,
-    at most a block (a kernel whose arrays outgrow the cache tiles it); a
+    (a modal solution and its maxima in time, an ODE reference) has the blocks' rows
+    cut, end to end, into pieces of equal size that the pool's processes run, then
+    cut back into the blocks: a piece holds a job's share of the samples
+    (PIECES_PER_JOB a job), at least PROBE rows, at most a block (a kernel whose
+    arrays outgrow the cache tiles it), and the pieces are a multiple of the jobs in
+    number, so that the jobs end together (a last block's small remainder left one
+    job idle for most of a piece: a tenth of a 2·10⁵-sample study); a
     lighter one runs here; a piece lost for good (its process died past the retries)
     marks its rows in the block's answer (:data:`LOST`). On a cluster every block
     goes to the workers, retried where one dies; a block lost for good comes back as
@@ -197,15 +200,19 @@ def kernel_parts(run: KernelChunk, blocks: Sequence[Any], mapper: Any) -> tuple[
         tail = head[2 * PROBE :]
         first = _joined([*probes, run(tail)], [PROBE, PROBE, len(tail)])
         return itertools.chain([first], map(run, blocks[1:])), ""
+    import numpy as np
+
     rest = [head[2 * PROBE :], *blocks[1:]]
-    size = piece_size(total - 2 * PROBE, mapper.jobs)
-    pieces = [_equal_pieces(b, size) for b in rest]
-    answers = iter(mapper(run, [p for group in pieces for p in group], on_error=lost_block))
+    rows = np.concatenate(rest)  # end to end: a piece may hold the rows of two blocks
+    count = -(-len(rows) // piece_size(len(rows), mapper.jobs))
+    count = -(-count // mapper.jobs) * mapper.jobs  # a multiple of the jobs: they end together
+    pieces = _split(rows, count)
+    answers = iter(mapper(run, pieces, on_error=lost_block))
+    flow = _Fragments(answers, [len(p) for p in pieces])
 
     def joined() -> Iterable[Any]:
-        for index, group in enumerate(pieces):
-            parts = [next(answers) for _ in group]
-            sizes = [len(p) for p in group]
+        for index, block in enumerate(rest):
+            parts, sizes = flow.take(len(block))
             if index == 0:
                 parts, sizes = [*probes, *parts], [PROBE, PROBE, *sizes]
             yield _joined(parts, sizes)
@@ -219,6 +226,35 @@ def kernel_parts(run: KernelChunk, blocks: Sequence[Any], mapper: Any) -> tuple[
     return joined(), mapper.description
 
 
+class _Fragments:
+    """The pieces' answers in order, handed out block by block: the parts of the
+    next ``rows`` rows (a piece's answer cut where a block ends) and their sizes."""
+
+    def __init__(self, answers: Iterator[Any], sizes: list[int]) -> None:
+        self.answers, self.sizes = answers, iter(sizes)
+        self.part: Any = None  # the answer being handed out, from its row ``used``
+        self.left = self.used = 0
+
+    def take(self, rows: int) -> tuple[list[Any], list[int]]:
+        parts, sizes = [], []
+        while rows:
+            if not self.left:
+                self.part, self.left, self.used = next(self.answers), next(self.sizes), 0
+            n = min(rows, self.left)
+            parts.append(_rows(self.part, self.used, self.used + n))
+            sizes.append(n)
+            self.used, self.left, rows = self.used + n, self.left - n, rows - n
+        return parts, sizes
+
+
+def _rows(answer: Any, first: int, last: int) -> Any:
+    """Rows ``first:last`` of a piece's answer (a dict of arrays; None and a lost
+    piece stand for any of their rows)."""
+    if answer is None or isinstance(answer, LostBlock):
+        return answer
+    return {k: v[first:last] if k != LOST_REASON else v for k, v in answer.items()}
+
+
 def piece_size(rows: int, jobs: int) -> int:
     """Rows of a piece of a heavy kernel's blocks on a pool of ``jobs``: large, since
     a kernel's cost a call (a step of an ODE over the block) is shared by its rows,
@@ -230,9 +266,13 @@ def piece_size(rows: int, jobs: int) -> int:
 def _equal_pieces(block: Any, size: int) -> list[Any]:
     """``block`` in the fewest pieces of at most ``size`` rows, of equal size (to a
     row)."""
-    count = max(1, -(-len(block) // size))
-    ends = [len(block) * i // count for i in range(count + 1)]
-    return [block[a:b] for a, b in zip(ends, ends[1:], strict=False)]
+    return _split(block, max(1, -(-len(block) // size)))
+
+
+def _split(rows: Any, count: int) -> list[Any]:
+    """``rows`` in ``count`` pieces of equal size (to a row)."""
+    ends = [len(rows) * i // count for i in range(count + 1)]
+    return [rows[a:b] for a, b in itertools.pairwise(ends)]
 
 
 #: In a block's answer, the rows of a piece lost for good (the rest of the block
