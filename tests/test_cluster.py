@@ -178,6 +178,32 @@ def test_a_kernel_sweep_runs_in_blocks_on_the_cluster_bit_identical(cluster, mon
         assert np.array_equal(here.columns[key], there.columns[key], equal_nan=True), key
 
 
+def test_a_local_cluster_s_workers_keep_dask_s_shutdown_noise_to_themselves():
+    # A worker's heartbeat that met the closing scheduler printed an ERROR with its
+    # traceback after a study that went well (1 run in 4): local:N's workers log
+    # only CRITICAL messages (mdcalc reports a failed block itself).
+    import logging
+
+    from mdcalc.runs.cluster import connect
+
+    client, cluster = connect("local:1")
+    try:
+        levels = client.run(_stderr_levels)
+    finally:
+        client.close()
+        cluster.close()
+    assert list(levels.values()) == [[logging.CRITICAL]]
+
+
+def _stderr_levels() -> list[int]:
+    """In a worker: the levels of the handlers that print dask's log to stderr."""
+    import logging
+    import sys
+
+    handlers = logging.getLogger("distributed").handlers
+    return [h.level for h in handlers if getattr(h, "stream", None) is sys.stderr]
+
+
 def test_the_command_line_takes_local_n_and_the_environment(tmp_path):
     path = study_path(tmp_path, 24)
     out_pool, out_dask = tmp_path / "pool.csv", tmp_path / "dask.csv"
