@@ -195,6 +195,27 @@ def test_a_local_cluster_s_workers_keep_dask_s_shutdown_noise_to_themselves():
     assert list(levels.values()) == [[logging.CRITICAL]]
 
 
+def test_two_local_clusters_at_once_take_ports_of_their_own():
+    # The scheduler's HTTP routes listened on 127.0.0.1:8787 with the dashboard off:
+    # a second cluster at the same time warned that the port was in use.
+    import warnings
+
+    from mdcalc.runs.cluster import connect
+
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        first = connect("local:1")
+        second = connect("local:1")
+        try:
+            ports = [c.scheduler.http_server.port for _, c in (first, second)]
+        finally:
+            for client, cluster in (first, second):
+                client.close()
+                cluster.close()
+    assert 8787 not in ports and len(set(ports)) == 2
+    assert not [w for w in caught if "already in use" in str(w.message)]
+
+
 def _stderr_levels() -> list[int]:
     """In a worker: the levels of the handlers that print dask's log to stderr."""
     import logging

@@ -111,6 +111,10 @@ def connect(scheduler: str) -> tuple[Any, Any]:
             processes=True,
             host="127.0.0.1",
             dashboard_address=None,
+            # the scheduler's HTTP routes (health, metrics) listen all the same: on a
+            # port of the system's choosing, not 8787, where a second cluster at the
+            # same time warned "Port 8787 is already in use"
+            scheduler_kwargs={"dashboard_address": "127.0.0.1:0"},
             # a worker's heartbeat that meets the closing scheduler logs an ERROR
             # with its traceback (dask/distributed#7192), after a run that went well;
             # a block that fails is retried and reported by mdcalc itself

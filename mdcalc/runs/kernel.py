@@ -175,12 +175,13 @@ def kernel_parts(run: KernelChunk, blocks: Sequence[Any], mapper: Any) -> tuple[
     (a modal solution and its maxima in time, an ODE reference) has the blocks' rows
     cut, end to end, into pieces of equal size that the pool's processes run, then
     cut back into the blocks: a piece holds a job's share of the samples
-    (PIECES_PER_JOB a job), at least PROBE rows, at most a block (a kernel whose
-    arrays outgrow the cache tiles it), and the pieces are a multiple of the jobs in
-    number, so that the jobs end together (a last block's small remainder left one
-    job idle for most of a piece: a tenth of a 2·10⁵-sample study); a
-    lighter one runs here; a piece lost for good (its process died past the retries)
-    marks its rows in the block's answer (:data:`LOST`). On a cluster every block
+    (PIECES_PER_JOB a job), at least PROBE rows (fewer where every job then gets
+    one), at most a block (a kernel whose arrays outgrow the cache tiles it), and the
+    pieces are a multiple of the jobs in number, so that the jobs end together (a
+    last block's small remainder left one job idle for most of a piece: a tenth of a
+    2·10⁵-sample study); a lighter one runs here; a piece lost for good (its process
+    died past the retries) marks its rows in the blocks' answers (:data:`LOST`),
+    in each block it spans. On a cluster every block
     goes to the workers, retried where one dies; a block lost for good comes back as
     a :class:`LostBlock`. The numbers are the same either way: each row's are its
     own."""
