@@ -225,20 +225,23 @@ def test_a_heavy_kernel_sweep_runs_in_blocks_on_the_pool_bit_identical(monkeypat
 def test_a_heavy_kernel_goes_to_the_pool_in_large_equal_pieces():
     # Pieces of 512 rows ran the adhesion-limited car's ODE kernel at a fifth of its
     # rate in pieces of 16 384 (each call pays its steps' Python work once): a piece
-    # is a job's share (four a job), at least PROBE rows, at most a block, and a
-    # block is cut into pieces of equal size, with no small remainder.
-    from mdcalc.runs.kernel import BLOCK, PROBE, _equal_pieces, piece_size
+    # is a job's share (four a job), at least PROBE rows, at most a block; the
+    # blocks' rows are cut end to end into pieces of equal size, a multiple of the
+    # jobs in number (a small remainder left a job idle), no more than the rows.
+    from mdcalc.runs.kernel import BLOCK, PROBE, _pieces, piece_size
 
     assert piece_size(99_000, 2) == 12_375
     assert piece_size(10**6, 2) == BLOCK
     assert piece_size(2_000, 2) == PROBE
     assert piece_size(99_000, 0) == 24_750
-    block = np.arange(BLOCK - 2 * PROBE)
-    pieces = _equal_pieces(block, 12_375)
-    sizes = [len(p) for p in pieces]
-    assert len(pieces) == 6 and max(sizes) - min(sizes) <= 1 and max(sizes) <= 12_375
-    assert np.array_equal(np.concatenate(pieces), block)
-    assert [len(p) for p in _equal_pieces(np.arange(5), 8)] == [5]
+    for rows, jobs, count in ((200_000 - 2 * PROBE, 2, 8), (10**6, 2, 16), (10**6, 3, 18),
+                              (1_100, 2, 4), (600, 3, 3), (1, 2, 1), (5, 8, 5)):  # fmt: skip
+        pieces = _pieces(np.arange(rows), jobs)
+        sizes = [len(p) for p in pieces]
+        assert len(pieces) == count, (rows, jobs, sizes)
+        assert max(sizes) - min(sizes) <= 1 and min(sizes) >= 1
+        assert max(sizes) <= max(piece_size(rows, jobs), 1)
+        assert np.array_equal(np.concatenate(pieces), np.arange(rows))
 
 
 #: Eight arrays of 1 MB, filled and freed 50 times (as the stages of a block's

@@ -165,16 +165,20 @@ def in_tiles(
     size = max([np.size(v) for v in grid.values()] + [1])
     if size <= rows:
         return None
-    tiles = -(-size // rows)
-    ends = [size * k // tiles for k in range(tiles + 1)]  # sizes a row apart at most
     parts: list[dict[str, Any]] = []
-    for first, last in itertools.pairwise(ends):
+    for first, last in itertools.pairwise(equal_ends(size, -(-size // rows))):
         tile = {k: v if np.size(v) == 1 else v[first:last] for k, v in grid.items()}
         part = sweep(case, tile, wanted)
         if part is None or (parts and set(part) != set(parts[0])):
             return None  # (tiles that give different keys: the block whole, as asked)
         parts.append(part)
     return {key: np.concatenate([p[key] for p in parts]) for key in parts[0]}
+
+
+def equal_ends(size: int, count: int) -> list[int]:
+    """The ends of ``count`` consecutive parts of ``size`` rows, their sizes a row
+    apart at most: 0, …, size."""
+    return [size * k // count for k in range(count + 1)]
 
 
 def value_at(case: Any, key: str) -> Any:

@@ -14,7 +14,7 @@ from pathlib import Path
 from typing import Any
 
 from mdcalc.input.casefile import CaseText, validate
-from mdcalc.input.model import DECLINED
+from mdcalc.input.model import DECLINED, equal_ends
 
 #: Samples or grid points a kernel block holds: 64 Ki of a closed form take a few
 #: tens of ms, of a modal solution with its maxima in time about a second.
@@ -204,10 +204,7 @@ def kernel_parts(run: KernelChunk, blocks: Sequence[Any], mapper: Any) -> tuple[
     import numpy as np
 
     rest = [head[2 * PROBE :], *blocks[1:]]
-    rows = np.concatenate(rest)  # end to end: a piece may hold the rows of two blocks
-    count = -(-len(rows) // piece_size(len(rows), mapper.jobs))
-    count = -(-count // mapper.jobs) * mapper.jobs  # a multiple of the jobs: they end together
-    pieces = _split(rows, count)
+    pieces = _pieces(np.concatenate(rest), mapper.jobs)  # a piece may span two blocks
     answers = iter(mapper(run, pieces, on_error=lost_block))
     flow = _Fragments(answers, [len(p) for p in pieces])
 
@@ -253,7 +250,7 @@ def _rows(answer: Any, first: int, last: int) -> Any:
     piece stand for any of their rows)."""
     if answer is None or isinstance(answer, LostBlock):
         return answer
-    return {k: v[first:last] if k != LOST_REASON else v for k, v in answer.items()}
+    return {k: v[first:last] for k, v in answer.items()}
 
 
 def piece_size(rows: int, jobs: int) -> int:
@@ -264,16 +261,18 @@ def piece_size(rows: int, jobs: int) -> int:
     return max(PROBE, min(BLOCK, -(-rows // (PIECES_PER_JOB * max(jobs, 1)))))
 
 
-def _equal_pieces(block: Any, size: int) -> list[Any]:
-    """``block`` in the fewest pieces of at most ``size`` rows, of equal size (to a
-    row)."""
-    return _split(block, max(1, -(-len(block) // size)))
+def _pieces(rows: Any, jobs: int) -> list[Any]:
+    """The blocks' ``rows``, end to end, in pieces of equal size (to a row) of at
+    most :func:`piece_size`, a multiple of the jobs in number, so that the jobs end
+    together (as many as there are rows, at most)."""
+    count = -(-len(rows) // piece_size(len(rows), jobs))
+    count = -(-count // max(jobs, 1)) * max(jobs, 1)
+    return _split(rows, max(1, min(count, len(rows))))
 
 
 def _split(rows: Any, count: int) -> list[Any]:
     """``rows`` in ``count`` pieces of equal size (to a row)."""
-    ends = [len(rows) * i // count for i in range(count + 1)]
-    return [rows[a:b] for a, b in itertools.pairwise(ends)]
+    return [rows[a:b] for a, b in itertools.pairwise(equal_ends(len(rows), count))]
 
 
 #: In a block's answer, the rows of a piece lost for good (the rest of the block
