@@ -1072,12 +1072,13 @@ def test_a_velocitys_peak_beside_the_loads_jump_is_found() -> None:
 
 @pytest.mark.parametrize("coordinates", [1, 2, 3])
 def test_the_modes_are_eigenpairs_of_the_first_order_system(coordinates: int) -> None:
-    # one or two coordinates: eigvals polished by a Newton step on det(λ²M + λC + K),
-    # and each vector (x, λx) with x the null vector of λ²M + λC + K; more: numpy's
-    # eig. Every pair has a residual |A·v - λ·v| of the rounding of A's size, every
-    # vector is a unit one, and a conjugate pair of eigenvalues has conjugate vectors
-    # bit for bit (the grid evaluates one of them)
-    from mdcalc.core.periodic.closed import _modes
+    # one or two coordinates: the roots of det(λ²M + λC + K) by their closed form (or
+    # eigvals where it fails) polished by Newton steps on it, and each vector (x, λx)
+    # with x the null vector of λ²M + λC + K; more: numpy's eig. Every pair has a
+    # residual |A·v - λ·v| of the rounding of A's size, every vector is a unit one,
+    # and a conjugate pair of eigenvalues has conjugate vectors bit for bit (the grid
+    # evaluates one of them)
+    from mdcalc.core.periodic.modes import _modes
 
     rng = np.random.default_rng(coordinates)
     n, m = coordinates, 400
@@ -1101,12 +1102,90 @@ def test_the_modes_are_eigenpairs_of_the_first_order_system(coordinates: int) ->
     assert np.array_equal(vectors[rows, :, cols + 1], np.conj(vectors[rows, :, cols]))
 
 
+def test_the_closed_forms_starts_are_each_masss_roots_by_hand() -> None:
+    # two masses apart (M, C, K diagonal, one row of M, C and K off the diagonal by a
+    # permutation of the masses' order): the quartic det(λ²M + λC + K) is the product
+    # of each mass's m·λ² + c·λ + k, whose roots are by hand (the stable form where
+    # they are real), underdamped, overdamped or one of each. The closed form's
+    # starts have them to 1e-5 (1.4e-6 seen: the slow roots of rows whose |λ| spread
+    # 10⁴), the polished eigenvalues to 1e-14; a pair is
+    # conjugate bit for bit and a real root real
+    from mdcalc.core.periodic.modes import _modes, _roots
+
+    rng = np.random.default_rng(11)
+    m = 400
+    masses = rng.uniform(0.5, 2.0, (m, 2))
+    springs = 10 ** rng.uniform(0, 6, (m, 2))
+    dampers = 2.0 * 10 ** rng.uniform(-3, 1, (m, 2)) * np.sqrt(masses * springs)
+    expected = np.empty((m, 4), dtype=complex)
+    for i in range(m):
+        for j in range(2):
+            a, b, c = masses[i, j], dampers[i, j], springs[i, j]
+            disc = b * b - 4 * a * c
+            if disc < 0:
+                root = math.sqrt(-disc) / (2 * a)
+                expected[i, 2 * j : 2 * j + 2] = [
+                    complex(-b / (2 * a), root),
+                    complex(-b / (2 * a), -root),
+                ]
+            else:
+                q = -(b + math.sqrt(disc)) / 2
+                expected[i, 2 * j : 2 * j + 2] = [q / a, c / q]
+    mass, damping, stiffness = (
+        np.einsum("ki,ij->kij", x, np.eye(2)) for x in (masses, dampers, springs)
+    )
+    system = RampSystem(mass, damping, stiffness, np.zeros((m, 2)), np.ones((m, 2)), 0.0, 1.0, 1.0)
+    entries = [
+        [[x[:, i, j, None] for j in range(2)] for i in range(2)] for x in (mass, damping, stiffness)
+    ]
+    starts = _roots(*entries)
+    lam, _, sure = _modes(system.first_order(), mass, damping, stiffness)
+    assert sure.all()
+    want = np.sort_complex(expected)
+    assert np.max(np.abs(np.sort_complex(starts) - want) / np.abs(want)) < 1e-5
+    assert np.max(np.abs(np.sort_complex(lam) - want) / np.abs(want)) < 1e-14
+    for row in lam:
+        complex_ = row[row.imag != 0]
+        assert len(complex_) in (0, 2, 4)
+        for k in range(0, len(complex_), 2):  # side by side, the one above the axis first
+            assert complex_[k].imag > 0 and complex_[k + 1] == np.conj(complex_[k])
+    assert np.count_nonzero(lam.imag == 0) > 100 and np.count_nonzero(lam.imag != 0) > 100
+
+
+def test_starts_that_settle_on_one_root_start_again_from_eigvals(monkeypatch) -> None:
+    # a closed form that gave one pair twice (and lost the other) would leave the
+    # row with a mode missing: two eigenvalues polished onto one root send the row
+    # back to eigvals' starts, and its four eigenvalues are numpy's (of A, built
+    # here)
+    from mdcalc.core.periodic import modes
+
+    found = modes._roots
+
+    def twice(m, c, k):
+        lam = found(m, c, k)
+        lam[:, 2:] = lam[:, :2]
+        return lam
+
+    monkeypatch.setattr(modes, "_roots", twice)
+    mass = np.array([[[2.0, 0.0], [0.5, 0.5]]])
+    damping = np.array([[[3.0, -1.0], [0.0, 1.0]]])
+    stiffness = np.array([[[4e4, -1e3], [0.0, 1e3]]])
+    a = np.zeros((4, 4))
+    a[:2, 2:] = np.eye(2)
+    a[2:, :2] = -np.linalg.solve(mass[0], stiffness[0])
+    a[2:, 2:] = -np.linalg.solve(mass[0], damping[0])
+    lam, _, sure = modes._modes(a[None], mass, damping, stiffness)
+    want = np.sort_complex(np.linalg.eigvals(a))
+    assert sure.all()
+    assert np.max(np.abs(np.sort_complex(lam[0]) - want) / np.abs(want)) < 1e-12
+
+
 def test_a_stiff_overdamped_modes_slow_eigenvalue_keeps_its_digits() -> None:
     # m·λ² + c·λ + k = 0 with c² ≫ 4mk: the slow root by the stable formula
     # (q = -(c + √(c² - 4mk))/2, λ = k/q, no cancellation) against _modes. eigvals
     # alone has it to about ε·|λ_fast| (up to 7e-6 of itself here, with |λ_fast/λ_slow|
     # up to 10¹¹); Newton steps on the pencil take it to its own rounding
-    from mdcalc.core.periodic.closed import _modes
+    from mdcalc.core.periodic.modes import _modes
 
     rng = np.random.default_rng(4)
     m = 200
@@ -1177,7 +1256,7 @@ def test_each_eigenvector_leaves_both_rows_of_the_pencil_their_rounding() -> Non
     # outright, as first written, was mostly the rounding of λ² + k₁ on this drive
     # from a review (2e-8 of the other row's terms); random drives whose masses and
     # stiffnesses span 10 decades hold both rows to 1e-14 of their terms
-    from mdcalc.core.periodic.closed import _modes
+    from mdcalc.core.periodic.modes import _modes
 
     rng = np.random.default_rng(12)
     size = 300
@@ -1270,12 +1349,15 @@ def test_a_flat_state_scans_no_bracket() -> None:
     assert evaluated[0] <= 2 * 4096 + 2
 
 
-def test_modes_spread_beyond_double_precision_have_no_answer() -> None:
+def test_modes_spread_beyond_double_precision_have_no_answer(monkeypatch) -> None:
     # two overdamped masses side by side, |λ_fast/λ_slow| = 10¹⁴, their slow roots 2 %
-    # apart: eigvals has them more than 1 % off, so Newton cannot start (a review saw
-    # them stay 0.7-1.7 % off, and the state with them, with no word said). Such a
-    # row has no answer; at 3 % apart Newton takes them to their rounding (above)
-    from mdcalc.core.periodic import SPREAD, Unresolved
+    # apart: the quartic's closed form has every root, the slow ones by hand
+    # (λ = 1/q, q = -(c + √(c² - 4))/2) to 1e-14. eigvals has them more than 1 % off,
+    # so Newton cannot start from it (a review saw them stay 0.7-1.7 % off, and the
+    # state with them, with no word said): a row whose closed form failed too would
+    # have no answer, and says so (here the closed form made to fail); at 3 % apart
+    # Newton takes eigvals' to their rounding (above)
+    from mdcalc.core.periodic import SPREAD, Unresolved, modes
 
     def system(ratio: float) -> RampSystem:
         damping = np.diag([1e7, 1e7 * ratio])
@@ -1283,6 +1365,16 @@ def test_modes_spread_beyond_double_precision_have_no_answer() -> None:
             np.eye(2), damping, np.eye(2), np.array([0.0, 1.0]), np.array([1.0, 0.5]), 0.0, 1.0, 1e4
         )
 
+    state = exact_periodic(system(1.02))
+    c = np.array([1e7, 1.02e7])
+    slow = np.sort(2.0 / -(c + np.sqrt(c * c - 4.0)))
+    got = np.sort(state.eigenvalues.real[np.argsort(np.abs(state.eigenvalues))[:2]])
+    assert np.max(np.abs(got - slow) / np.abs(slow)) < 1e-14
+
+    def failed(m, c, k):
+        return np.full((len(m[0][0]), 2 * len(m)), np.nan + 0j)
+
+    monkeypatch.setattr(modes, "_roots", failed)
     # (the ratio of the roots by hand: c₂/(1/c₁) = 1.02e7·1e7 ≈ 1e14)
     with pytest.raises(Unresolved, match=r"the modes spread from .+ rad/s, a ratio of 1e\+14"):
         exact_periodic(system(1.02))

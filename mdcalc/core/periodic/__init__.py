@@ -30,8 +30,9 @@ Three ways to the periodic state, each with its own error:
 Maxima of an observable w·(x, x') over a period come from samples that resolve the
 fastest mode, refined by regula falsi on the derivative (:func:`periodic_maximum`).
 
-The parts: :mod:`.system` (the system and its errors), :mod:`.closed` (the closed
-form, one system or a block), :mod:`.fourier`, :mod:`.peaks` (maxima over a period).
+The parts: :mod:`.system` (the system and its errors), :mod:`.modes` (its modes),
+:mod:`.closed` (the closed form, one system or a block), :mod:`.fourier`,
+:mod:`.peaks` (maxima over a period).
 """
 
 from __future__ import annotations

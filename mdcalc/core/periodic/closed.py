@@ -9,6 +9,7 @@ from typing import Any
 
 import numpy as np
 
+from mdcalc.core.periodic.modes import _modes
 from mdcalc.core.periodic.peaks import _samples, periodic_maxima
 from mdcalc.core.periodic.system import Observable, RampSystem, Unbounded, Unresolved
 from mdcalc.core.powers import powers
@@ -371,9 +372,10 @@ def exact_block(system: RampSystem, size: int = 1) -> PeriodicBlock:
     failure[(failure == SOLVED) & np.any(_resonant(gap, eigenvalues * t[:, None]), axis=-1)] = (
         RESONANT
     )
-    # modes spread so far (|λ_fast/λ_slow| beyond about 10¹³) that eigvals has the
-    # slow one over 1 % off and Newton cannot start from it: no answer here (where
-    # eigenvalues meet, e^{Aτ} is taken whole, and they only set the sampling)
+    # modes that neither the closed form nor eigvals has within 1 % (eigvals: the
+    # slow ones beyond |λ_fast/λ_slow| ≈ 10¹³), so that Newton cannot start: no
+    # answer here (where eigenvalues meet, e^{Aτ} is taken whole, and they only set
+    # the sampling)
     failure[(failure == SOLVED) & ~meet & ~sure] = SPREAD
     solved = failure == SOLVED
     meet &= solved
@@ -422,88 +424,6 @@ def _inverse(vectors: np.ndarray) -> np.ndarray:
             except np.linalg.LinAlgError:
                 pass
         return inverse
-
-
-#: Newton steps at most that polish an eigenvalue of one or two coordinates.
-NEWTON_STEPS = 6
-
-
-def _modes(
-    first: np.ndarray, mass: np.ndarray, damping: np.ndarray, stiffness: np.ndarray
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Eigenvalues and unit eigenvectors of each row's first-order matrix A, complex
-    throughout (an overdamped block's are all real, and numpy says so), and whether
-    each row's eigenvalues are sure (a Newton step has come under 1e-8 of each;
-    numpy's eig: always). A system of
-    one or two coordinates takes its eigenvalues alone (eigvals) and each
-    eigenvector as (x, λx), x the null vector of λ²M + λC + K: of one coordinate 1,
-    of two a row of that 2×2 turned a right angle, the one that leaves the other
-    row the least residual against its terms (numpy's batched eig of 4×4 matrices
-    costs 1.7 times its eigvals). Conjugate eigenvalues get conjugate vectors, bit
-    for bit."""
-    n = mass.shape[-1]
-    if n > 2:
-        eigenvalues, vectors = np.linalg.eig(first)
-        return eigenvalues.astype(complex), vectors.astype(complex), np.ones(len(first), bool)
-    lam = np.linalg.eigvals(first).astype(complex)  # (m, 2n)
-    mass, damping, stiffness = mass[:, None], damping[:, None], stiffness[:, None]
-
-    def pencil(at: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """λ²M + λC + K and its derivative 2λM + C at each eigenvalue."""
-        at = at[..., None, None]
-        return (at * at) * mass + at * damping + stiffness, (2.0 * at) * mass + damping
-
-    # Newton steps on det(λ²M + λC + K): eigvals has each λ to about ε·‖A‖, so a
-    # slow mode of a stiff system only to ε·|λ_fast/λ_slow| of itself; a step
-    # squares that (the determinant of at most 2×2 carries rounding of its terms'
-    # size only). Up to NEWTON_STEPS, each taken only where it is under 1 % of λ; an
-    # eigenvalue stops once its step is under 1e-14 of it (its own steps, whatever
-    # the block holds: a row alone gets the same digits). So |λ_fast/λ_slow| up to
-    # about 10¹² keeps the slow mode to its rounding (a review: 6.7·10⁻¹² at 10¹³);
-    # beyond 10¹³ or so eigvals' own first error is over 1 %: the row is not sure.
-    going = np.ones(lam.shape, dtype=bool)
-    close = np.zeros(lam.shape, dtype=bool)  # a step has been under 1e-8 of λ
-    for _ in range(NEWTON_STEPS):
-        q, dq = pencil(lam)
-        if n == 1:
-            det, slope = q[..., 0, 0], dq[..., 0, 0]
-        else:
-            det = q[..., 0, 0] * q[..., 1, 1] - q[..., 0, 1] * q[..., 1, 0]
-            slope = (
-                dq[..., 0, 0] * q[..., 1, 1]
-                + q[..., 0, 0] * dq[..., 1, 1]
-                - dq[..., 0, 1] * q[..., 1, 0]
-                - q[..., 0, 1] * dq[..., 1, 0]
-            )
-        with np.errstate(all="ignore"):
-            step = det / slope
-            size = np.abs(step) / np.abs(lam)
-        taken = going & np.isfinite(step) & (size <= 1e-2)
-        lam = np.where(taken, lam - step, lam)
-        close |= taken & (size <= 1e-8)
-        going = taken & (size > 1e-14)
-        if not going.any():
-            break
-    if n == 1:
-        x = np.ones(lam.shape + (1,), dtype=complex)
-    else:
-        q = pencil(lam)[0]
-        # Either row turned a right angle is a null vector; the other row's residual
-        # is |det| for both. The one chosen makes that residual the least against
-        # the other row's terms (|λ|²|M| + |λ||C| + |K|, what its rounding is of):
-        # the larger row outright can be mostly the rounding of λ² + k₁.
-        at = np.abs(lam)[..., None, None]
-        terms = at * at * np.abs(mass) + at * np.abs(damping) + np.abs(stiffness)
-        entry = np.abs(q)
-        first_row = terms[..., 1, 0] * entry[..., 0, 1] + terms[..., 1, 1] * entry[..., 0, 0]
-        second_row = terms[..., 0, 0] * entry[..., 1, 1] + terms[..., 0, 1] * entry[..., 1, 0]
-        row = np.where(first_row >= second_row, 0, 1)[..., None, None]
-        chosen = np.take_along_axis(q, np.broadcast_to(row, lam.shape + (1, 2)), axis=-2)
-        x = np.stack([chosen[..., 0, 1], -chosen[..., 0, 0]], axis=-1)
-    vectors = np.concatenate([x, lam[..., None] * x], axis=-1)  # (m, 2n modes, 2n)
-    with np.errstate(all="ignore"):  # (a zero pencil, two modes alike: they meet)
-        vectors = vectors / np.linalg.norm(vectors, axis=-1, keepdims=True)
-    return lam, np.swapaxes(vectors, -1, -2), np.all(close, axis=-1)
 
 
 #: Eigenvalues closer than this (relative to the larger) are solved by e^{Aτ}: the

@@ -1,0 +1,217 @@
+"""The modes of a block of systems M·x'' + C·x' + K·x = …, one per row: of one or
+two coordinates the roots of det(λ²M + λC + K) in closed form, polished by Newton
+steps, and their eigenvectors (x, λx); of more, numpy's eig of the first-order
+matrix."""
+
+from __future__ import annotations
+
+import numpy as np
+
+#: Newton steps at most that polish an eigenvalue of one or two coordinates.
+NEWTON_STEPS = 6
+#: Two eigenvalues polished from the closed form's starts closer than this (relative
+#: to the larger) may be one root reached twice: the row's starts are eigvals'.
+SAME_ROOT = 1e-9
+
+
+def _modes(
+    first: np.ndarray, mass: np.ndarray, damping: np.ndarray, stiffness: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Eigenvalues and unit eigenvectors of each row's first-order matrix A, complex
+    throughout, and whether each row's eigenvalues are sure (a Newton step has come
+    under 1e-8 of each; numpy's eig: always). A system of one or two coordinates
+    takes its eigenvalues as the roots of det(λ²M + λC + K), a quadratic or a
+    quartic: from its closed form (:func:`_roots`), polished by Newton steps
+    (:func:`_newton`); a row whose starts do not all settle, or two of which settle
+    on one root, starts again from numpy's eigvals of A. (The closed form settled
+    every row of 3000 random two-mass drives whose stiffnesses span 10³–10¹², and
+    has the slow pair of two overdamped masses 10¹⁴ below the fast one to 1e-14,
+    where eigvals is over 1 % off. On 4096 rows of vk_variator.toml's three-mass
+    state it and its Newton step take 3.9 ms, eigvals 8.2 ms and its steps 3.0.)
+    Each eigenvector is (x, λx), x the null vector of λ²M + λC + K: of one
+    coordinate 1, of two a row of that 2×2 turned a right angle, the one that
+    leaves the other row the least residual against its terms. Conjugate
+    eigenvalues get conjugate vectors, bit for bit."""
+    n = mass.shape[-1]
+    if n > 2:
+        eigenvalues, vectors = np.linalg.eig(first)
+        return eigenvalues.astype(complex), vectors.astype(complex), np.ones(len(first), bool)
+    m = [[mass[:, i, j, None] for j in range(n)] for i in range(n)]
+    c = [[damping[:, i, j, None] for j in range(n)] for i in range(n)]
+    k = [[stiffness[:, i, j, None] for j in range(n)] for i in range(n)]
+    lam, close = _newton(_roots(m, c, k), m, c, k)
+    sure = np.all(close, axis=-1)
+    with np.errstate(all="ignore"):
+        gap = np.abs(lam[:, :, None] - lam[:, None, :])
+        same = gap <= SAME_ROOT * np.maximum(np.abs(lam[:, :, None]), np.abs(lam[:, None, :]))
+    again = np.flatnonzero(~sure | np.any(same & ~np.eye(2 * n, dtype=bool), axis=(1, 2)))
+    if again.size:
+        part = [[[x[again] for x in row] for row in matrix] for matrix in (m, c, k)]
+        lam[again], close = _newton(np.linalg.eigvals(first[again]).astype(complex), *part)
+        sure[again] = np.all(close, axis=-1)
+    with np.errstate(all="ignore"):  # (a zero pencil, two modes alike: they meet)
+        return lam, _vectors(lam, m, c, k), sure
+
+
+Entries = list[list[np.ndarray]]  # a 2×2 (or 1×1) matrix by its entries, (m, 1) each
+
+
+def _roots(m: Entries, c: Entries, k: Entries) -> np.ndarray:
+    """The roots of det(λ²M + λC + K) of each row, (m, 2n) complex: a conjugate pair
+    side by side (the one above the axis first), conjugate bit for bit. The
+    quadratic of one coordinate by its stable form; the quartic of two as two real
+    quadratics, by Ferrari's resolvent cubic (its largest real root) in λ scaled by
+    the roots' geometric mean. NaN where a number is not finite or a root is zero."""
+    if len(m) == 1:
+        p, q = c[0][0] / m[0][0], k[0][0] / m[0][0]
+        return _quadratic_roots(p[:, 0], q[:, 0])
+    with np.errstate(all="ignore"):
+        a4 = m[0][0] * m[1][1] - m[0][1] * m[1][0]
+        a3 = m[0][0] * c[1][1] + c[0][0] * m[1][1] - m[0][1] * c[1][0] - c[0][1] * m[1][0]
+        a2 = (m[0][0] * k[1][1] + c[0][0] * c[1][1] + k[0][0] * m[1][1]
+              - m[0][1] * k[1][0] - c[0][1] * c[1][0] - k[0][1] * m[1][0])  # fmt: skip
+        a1 = c[0][0] * k[1][1] + k[0][0] * c[1][1] - c[0][1] * k[1][0] - k[0][1] * c[1][0]
+        a0 = k[0][0] * k[1][1] - k[0][1] * k[1][0]
+        scale = np.sqrt(np.sqrt(np.abs(a0 / a4)))[:, 0]
+        b = (a3 / a4)[:, 0] / scale
+        c2 = (a2 / a4)[:, 0] / scale**2
+        d = (a1 / a4)[:, 0] / scale**3
+        e = (a0 / a4)[:, 0] / scale**4
+        # x⁴ + bx³ + c₂x² + dx + e = (x² + bx/2 + y/2)² - (αx + β)² where y is a root
+        # of y³ - c₂y² + (bd - 4e)y - (b²e - 4c₂e + d²) = 0 that makes α² ≥ 0
+        y = _largest_real_root(-c2, b * d - 4.0 * e, -(b * b * e - 4.0 * c2 * e + d * d))
+        alpha = np.sqrt(np.maximum(0.25 * b * b - c2 + y, 0.0))
+        beta = np.where(
+            alpha > 0.0,
+            (0.5 * b * y - d) / (2.0 * alpha),
+            np.sqrt(np.maximum(0.25 * y * y - e, 0.0)),
+        )
+        # the factor with the larger roots keeps its digits; the other loses them to
+        # the cancellation the first has not: it is taken from the quartic's last
+        # two coefficients by the first (q₁q₂ = e, p₁q₂ + p₂q₁ = d)
+        p1, q1 = 0.5 * b - alpha, 0.5 * y - beta
+        p2, q2 = 0.5 * b + alpha, 0.5 * y + beta
+        swap = np.abs(q1) > np.abs(q2)
+        p1, p2 = np.where(swap, p2, p1), np.where(swap, p1, p2)
+        q1, q2 = np.where(swap, q2, q1), np.where(swap, q1, q2)
+        q1 = e / q2
+        p1 = (d - p2 * q1) / q2
+        low, high = _quadratic_roots(p1, q1), _quadratic_roots(p2, q2)
+        return np.concatenate([low, high], axis=-1) * scale[:, None]
+
+
+def _quadratic_roots(p: np.ndarray, q: np.ndarray) -> np.ndarray:
+    """The roots of x² + px + q, (m, 2): a conjugate pair (+ first) where they are
+    complex, else the larger by -(p/2 ± √·) and the other by q over it."""
+    with np.errstate(all="ignore"):
+        half = 0.5 * p
+        disc = half * half - q
+        root = np.sqrt(np.abs(disc))
+        larger = -(half + np.copysign(root, half))
+        real = np.stack([larger, q / larger], axis=-1).astype(complex)
+        pair = np.stack([-half + 1j * root, -half - 1j * root], axis=-1)
+        return np.where((disc < 0.0)[:, None], pair, real)
+
+
+def _largest_real_root(a: np.ndarray, b: np.ndarray, c: np.ndarray) -> np.ndarray:
+    """The largest real root of y³ + ay² + by + c (one real root: Cardano's, without
+    its cancellation; three: the trigonometric form's largest), then two Newton
+    steps."""
+    with np.errstate(all="ignore"):
+        shift = a / 3.0
+        p = b - a * shift
+        q = c - shift * (b - 2.0 * shift * shift)  # 2a³/27 - ab/3 + c
+        disc = 0.25 * q * q + p * p * p / 27.0
+        u = np.cbrt(-0.5 * q - np.copysign(np.sqrt(np.maximum(disc, 0.0)), q))
+        one = u - p / (3.0 * np.where(u == 0.0, 1.0, u))
+        radius = np.sqrt(np.maximum(-p / 3.0, 0.0))
+        cosine = np.clip(-0.5 * q / np.where(radius == 0.0, 1.0, radius**3), -1.0, 1.0)
+        three = 2.0 * radius * np.cos(np.arccos(cosine) / 3.0)
+        y = np.where(disc > 0.0, one, three) - shift
+        for _ in range(2):
+            value = ((y + a) * y + b) * y + c
+            slope = (3.0 * y + 2.0 * a) * y + b
+            step = value / slope
+            y = np.where(np.isfinite(step), y - step, y)
+        return y
+
+
+def _pencil(lam: np.ndarray, m: Entries, c: Entries, k: Entries) -> Entries:
+    """The entries of λ²M + λC + K at each eigenvalue."""
+    square, size = lam * lam, range(len(m))
+    return [[square * m[i][j] + lam * c[i][j] + k[i][j] for j in size] for i in size]
+
+
+def _newton(lam: np.ndarray, m: Entries, c: Entries, k: Entries) -> tuple[np.ndarray, np.ndarray]:
+    """Newton steps on det(λ²M + λC + K) from each start, and whether a step has come
+    under 1e-8 of each eigenvalue.
+
+    eigvals has each λ to about ε·‖A‖, so a slow mode of a stiff system only to
+    ε·|λ_fast/λ_slow| of itself (the closed form has most to a few ε); a step
+    squares that (the determinant of at most 2×2 carries rounding of its terms'
+    size only). Up to NEWTON_STEPS, each taken only where it is under 1 % of λ; an
+    eigenvalue stops once its step is under 1e-14 of it (its own steps, whatever
+    the block holds: a row alone gets the same digits; after the first step only
+    the rows still going are stepped). From eigvals, |λ_fast/λ_slow| up to about
+    10¹² keeps the slow mode to its rounding (a review: 6.7·10⁻¹² at 10¹³); beyond
+    10¹³ or so eigvals' own first error is over 1 %: the row is not sure."""
+    lam = lam.copy()
+    close = np.zeros(lam.shape, dtype=bool)  # a step has been under 1e-8 of λ
+    going = np.ones(lam.shape, dtype=bool)
+    rows = np.arange(len(lam))  # the rows with an eigenvalue going (after a step: few)
+    at, entries = lam, [m, c, k]
+    for step_number in range(NEWTON_STEPS):
+        if step_number:
+            rows = rows[np.any(going, axis=-1)]
+            if not rows.size:
+                break
+            at, going = lam[rows], going[np.any(going, axis=-1)]
+            entries = [[[x[rows] for x in row] for row in matrix] for matrix in (m, c, k)]
+        q = _pencil(at, *entries)
+        double, (m_, c_, _) = 2.0 * at, entries
+        dq = [[double * m_[i][j] + c_[i][j] for j in range(len(m))] for i in range(len(m))]
+        if len(m) == 1:
+            det, slope = q[0][0], dq[0][0]
+        else:
+            det = q[0][0] * q[1][1] - q[0][1] * q[1][0]
+            slope = dq[0][0] * q[1][1] + q[0][0] * dq[1][1] - dq[0][1] * q[1][0]
+            slope = slope - q[0][1] * dq[1][0]
+        with np.errstate(all="ignore"):
+            step = det / slope
+            size = np.abs(step) / np.abs(at)
+        taken = going & np.isfinite(step) & (size <= 1e-2)
+        lam[rows] = np.where(taken, at - step, at)
+        close[rows] |= taken & (size <= 1e-8)
+        going = taken & (size > 1e-14)
+    return lam, close
+
+
+def _vectors(lam: np.ndarray, m: Entries, c: Entries, k: Entries) -> np.ndarray:
+    """The unit eigenvectors (x, λx) as columns, (m, 2n, 2n): x over its norm
+    times √(1 + |λ|²), and λ times that."""
+    rows, modes = lam.shape
+    if len(m) == 1:
+        x = [np.ones(lam.shape, dtype=complex)]
+    else:
+        # Either row turned a right angle is a null vector; the other row's residual
+        # is |det| for both. The one chosen makes that residual the least against
+        # the other row's terms (|λ|²|M| + |λ||C| + |K|, what its rounding is of):
+        # the larger row outright can be mostly the rounding of λ² + k₁.
+        q = _pencil(lam, m, c, k)
+        at = np.abs(lam)
+        size = at * at
+
+        def terms(i: int, j: int) -> np.ndarray:
+            return size * np.abs(m[i][j]) + at * np.abs(c[i][j]) + np.abs(k[i][j])
+
+        first_row = terms(1, 0) * np.abs(q[0][1]) + terms(1, 1) * np.abs(q[0][0])
+        second_row = terms(0, 0) * np.abs(q[1][1]) + terms(0, 1) * np.abs(q[1][0])
+        top = first_row >= second_row
+        x = [np.where(top, q[0][1], q[1][1]), -np.where(top, q[0][0], q[1][0])]
+    length = sum(part.real * part.real + part.imag * part.imag for part in x)
+    length = np.sqrt(length * (1.0 + (lam.real * lam.real + lam.imag * lam.imag)))
+    vectors = np.empty((rows, 2 * len(x), modes), dtype=complex)
+    for i, part in enumerate(x):
+        vectors[:, i] = part / length
+        vectors[:, len(x) + i] = lam * vectors[:, i]
+    return vectors
