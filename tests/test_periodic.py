@@ -726,6 +726,32 @@ def test_a_block_mixes_rows_whose_eigenvalues_meet_with_modal_rows() -> None:
         assert times[i] == pytest.approx(one.time, abs=1e-12)
 
 
+def test_the_maxima_of_several_observables_are_each_ones_alone() -> None:
+    # maxima_of shares the grids' exponentials among its observables: each one's
+    # values and times are those of maxima alone, bit for bit, on modal rows (a
+    # block of wide two-mass drives) and on rows that meet (ζ = 1 beside ζ = 0.3),
+    # an observable per row among them
+    rng = np.random.default_rng(12)
+    block = _wide_two_mass_block(rng, 40)
+    per_row = rng.normal(size=(40, 4))
+    ws = [np.eye(4)[0], -np.eye(4)[3], np.array([0.0, 1e5, 0.0, 30.0]), per_row]
+    for (values, times, samples, resolved), w in zip(block.maxima_of(ws), ws, strict=True):
+        alone = block.maxima(w)
+        assert np.array_equal(values, alone[0], equal_nan=True)
+        assert np.array_equal(times, alone[1], equal_nan=True)
+        assert np.array_equal(samples, alone[2]) and np.array_equal(resolved, alone[3])
+    rows = [sdof(1.0, 2.0, z, 1.0, -3.0, 2.0 / 0.7, 0.7).system() for z in (0.3, 1.0)]
+    fields = ("mass", "damping", "stiffness", "constant", "shape", "start", "slope", "period")
+    mixed = periodic.exact_block(
+        RampSystem(*[np.stack([np.asarray(getattr(r, f)) for r in rows]) for f in fields])
+    )
+    assert mixed.meet.tolist() == [False, True]
+    ws = [np.array([1.0, 0.0]), np.array([0.0, -1.0])]
+    for (values, times, _, _), w in zip(mixed.maxima_of(ws), ws, strict=True):
+        assert np.array_equal(values, mixed.maxima(w)[0])
+        assert np.array_equal(times, mixed.maxima(w)[1])
+
+
 # ----------------------------------------------------------------------------- property
 
 
@@ -1446,7 +1472,7 @@ def test_modes_whose_1_norm_condition_passes_1e12_take_the_matrix_exponential(
     def modes(first, mass, damping, stiffness):
         eigenvalues, _, sure = real_modes(first, mass, damping, stiffness)
         vectors = np.diag([1.0, 1.0, 1.0, 1.0 / condition]).astype(complex)
-        return eigenvalues, np.broadcast_to(vectors, (len(first), 4, 4)).copy(), sure
+        return eigenvalues, np.broadcast_to(vectors, (len(mass), 4, 4)).copy(), sure
 
     monkeypatch.setattr(closed, "_modes", modes)
     block = closed.exact_block(closed.block_of_one(system))

@@ -4,6 +4,7 @@ study's samples): modes, or e^{Aτ} whole where eigenvalues meet; its maxima."""
 from __future__ import annotations
 
 import math
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
 from typing import Any
 
@@ -133,48 +134,17 @@ class PeriodicBlock:
         row's own, or ``fastest``). NaN where a row has no state. Rows are sampled
         in groups of one sample count and in parts of at most :data:`BLOCK_CELLS`
         complex exponentials."""
+        return self.maxima_of([w], fastest)[0]
+
+    def maxima_of(
+        self, ws: Sequence[Observable], fastest: np.ndarray | None = None
+    ) -> list[tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]]:
+        """:meth:`maxima` of each observable of ``ws``, the exponentials of the
+        grids, which the modes alone set, taken once for them all."""
         m, width = self.p0.shape
-        w = np.broadcast_to(np.asarray(w, dtype=float), (m, width))
-        lam = self.eigenvalues
-        weights = (w[:, None, :] @ self.vectors)[:, 0, :] * self.coefficients
-        slopes = weights * lam
-        level, drift = np.sum(w * self.p0, axis=-1), np.sum(w * self.p1, axis=-1)
-
-        # The exact value and rate take every mode with its own weight: a conjugate
-        # pair's second weight is the first's conjugate only to the round-off of the
-        # coordinates, which a pair near critical damping amplifies (twice the real
-        # part of the first lost 1.6e-11 of a χ against a 40-digit reference)
-        def observe(rows: np.ndarray, tau: np.ndarray) -> np.ndarray:
-            modal = np.exp(tau[..., None] * lam[rows][:, None, :]) * weights[rows][:, None, :]
-            return level[rows][:, None] + drift[rows][:, None] * tau + _real_sum(modal)
-
-        kept: list[Any] = [None, None]  # the last rows asked and their numbers
-
-        def rate(rows: np.ndarray, tau: np.ndarray) -> np.ndarray:
-            if kept[0] is not rows:  # the refinement asks about the same rows each step
-                kept[:] = [rows, (lam[rows][:, None, :], slopes[rows][:, None, :], drift[rows])]
-            lam_rows, slope_rows, drift_rows = kept[1]
-            modal = np.exp(tau[..., None] * lam_rows) * slope_rows
-            return drift_rows[:, None] + _real_sum(modal)
-
-        # the rows that meet observe w·S·e^{Bτ}·d₀ and its rate w·S·B·e^{Bτ}·d₀
-        w_s = (w[:, None, :] @ self.basis)[:, 0, :]
-        w_a = (w_s[:, None, :] @ self.matrix)[:, 0, :]
-
-        def observe_flow(rows: np.ndarray, tau: np.ndarray) -> np.ndarray:
-            flow = np.einsum(
-                "ksij,kj,ki->ks", _flow(self.matrix[rows], tau), self.origin[rows], w_s[rows]
-            )
-            return level[rows][:, None] + drift[rows][:, None] * tau + flow
-
-        def rate_flow(rows: np.ndarray, tau: np.ndarray) -> np.ndarray:
-            flow = np.einsum(
-                "ksij,kj,ki->ks", _flow(self.matrix[rows], tau), self.origin[rows], w_a[rows]
-            )
-            return drift[rows][:, None] + flow
-
+        each = [_Observed(self, w) for w in ws]
         samples, resolved = _samples(self.period, self.fastest if fastest is None else fastest)
-        values, times = np.full(m, math.nan), np.full(m, math.nan)
+        found = [(np.full(m, math.nan), np.full(m, math.nan)) for _ in each]
         solved = self.failure == SOLVED
         for count in np.unique(samples[solved]):
             for meet in (False, True):
@@ -182,18 +152,69 @@ class PeriodicBlock:
                 parts = max(1, -(-len(group) * int(count) * width // BLOCK_CELLS))
                 for rows in np.array_split(group, min(parts, group.size)) if group.size else []:
                     h = self.period[rows] / count
-                    if meet:
-                        grid = _flow_grid(level[rows], drift[rows], w_s[rows], self.matrix[rows],
-                                          self.origin[rows], h, int(count))  # fmt: skip
-                        sampler, slope = observe_flow, rate_flow
-                    else:
-                        grid = _grid(level[rows], drift[rows], weights[rows], lam[rows], h,
-                                     int(count))  # fmt: skip
-                        sampler, slope = observe, rate
-                    values[rows], times[rows] = periodic_maxima(
-                        sampler, slope, self.period[rows], int(count), rows, grid
-                    )
-        return values, times, samples, resolved
+                    grid_of = None if meet else _grid_of(self.eigenvalues[rows], h, int(count))
+                    for one, (values, times) in zip(each, found, strict=True):
+                        if grid_of is None:
+                            grid = _flow_grid(one.level[rows], one.drift[rows], one.w_s[rows],
+                                              self.matrix[rows], self.origin[rows], h,
+                                              int(count))  # fmt: skip
+                            sampler, slope = one.observe_flow, one.rate_flow
+                        else:
+                            grid = grid_of(one.level[rows], one.drift[rows], one.weights[rows])
+                            sampler, slope = one.observe, one.rate
+                        values[rows], times[rows] = periodic_maxima(
+                            sampler, slope, self.period[rows], int(count), rows, grid
+                        )
+        return [(values, times, samples, resolved) for values, times in found]
+
+
+class _Observed:
+    """An observable w of a block's states: its level, drift and modal weights, and
+    its value and rate at times of given rows (modal, or by e^{Bτ} where the rows'
+    eigenvalues meet)."""
+
+    def __init__(self, block: PeriodicBlock, w: Observable) -> None:
+        m, width = block.p0.shape
+        w = np.broadcast_to(np.asarray(w, dtype=float), (m, width))
+        self.block, self.lam = block, block.eigenvalues
+        self.weights = (w[:, None, :] @ block.vectors)[:, 0, :] * block.coefficients
+        self.slopes = self.weights * self.lam
+        self.level, self.drift = np.sum(w * block.p0, axis=-1), np.sum(w * block.p1, axis=-1)
+        # the rows that meet observe w·S·e^{Bτ}·d₀ and its rate w·S·B·e^{Bτ}·d₀
+        self.w_s = (w[:, None, :] @ block.basis)[:, 0, :]
+        self.w_a = (self.w_s[:, None, :] @ block.matrix)[:, 0, :]
+        self.kept: list[Any] = [None, None]  # the last rows asked and their numbers
+
+    # The exact value and rate take every mode with its own weight: a conjugate
+    # pair's second weight is the first's conjugate only to the round-off of the
+    # coordinates, which a pair near critical damping amplifies (twice the real
+    # part of the first lost 1.6e-11 of a χ against a 40-digit reference)
+    def observe(self, rows: np.ndarray, tau: np.ndarray) -> np.ndarray:
+        modal = np.exp(tau[..., None] * self.lam[rows][:, None, :]) * self.weights[rows][:, None, :]
+        return self.level[rows][:, None] + self.drift[rows][:, None] * tau + _real_sum(modal)
+
+    def rate(self, rows: np.ndarray, tau: np.ndarray) -> np.ndarray:
+        kept = self.kept
+        if kept[0] is not rows:  # the refinement asks about the same rows each step
+            lam, slopes = self.lam[rows][:, None, :], self.slopes[rows][:, None, :]
+            kept[:] = [rows, (lam, slopes, self.drift[rows])]
+        lam_rows, slope_rows, drift_rows = kept[1]
+        modal = np.exp(tau[..., None] * lam_rows) * slope_rows
+        return drift_rows[:, None] + _real_sum(modal)
+
+    def observe_flow(self, rows: np.ndarray, tau: np.ndarray) -> np.ndarray:
+        b = self.block
+        flow = np.einsum(
+            "ksij,kj,ki->ks", _flow(b.matrix[rows], tau), b.origin[rows], self.w_s[rows]
+        )
+        return self.level[rows][:, None] + self.drift[rows][:, None] * tau + flow
+
+    def rate_flow(self, rows: np.ndarray, tau: np.ndarray) -> np.ndarray:
+        b = self.block
+        flow = np.einsum(
+            "ksij,kj,ki->ks", _flow(b.matrix[rows], tau), b.origin[rows], self.w_a[rows]
+        )
+        return self.drift[rows][:, None] + flow
 
 
 def _real_sum(modal: np.ndarray) -> np.ndarray:
@@ -229,22 +250,30 @@ def _grid(
     each run of a row is one small matrix product: its anchors' factors
     (w·e^{λ·mRUN·h} in real and imaginary parts, the level and drift there, the
     drift's step) by the run's (the powers' parts, 1, r)."""
+    return _grid_of(lam, h, count)(level, drift, weights)
+
+
+def _grid_of(
+    lam: np.ndarray, h: np.ndarray, count: int
+) -> Callable[[np.ndarray, np.ndarray, np.ndarray], np.ndarray]:
+    """:func:`_grid` in two parts: what the modes alone set (the powers and the
+    anchors' exponentials, for any observable of the rows), and the function of
+    the level, drift and weights that finishes it."""
     k, width = lam.shape
     run = min(RUN, count)
     # A conjugate pair of modes (eig gives them side by side) sums to twice the real
     # part of the first: its partner is not evaluated (to the round-off of the
     # partner's weight, which is the first's conjugate up to it)
-    weights = weights.copy()
+    pairs = []
     taken = np.zeros(k, dtype=bool)
     skipped = np.zeros(width, dtype=bool)
     for i in range(width - 1):
         pair = ~taken & (lam[:, i + 1] == np.conj(lam[:, i])) & (lam[:, i].imag != 0.0)
-        weights[:, i] = np.where(pair, 2.0 * weights[:, i], weights[:, i])
-        weights[:, i + 1] = np.where(pair, 0.0, weights[:, i + 1])
+        pairs.append(pair)
         taken = pair
         skipped[i + 1] = bool(np.all(pair))
     used = np.flatnonzero(~skipped)
-    lam, weights = lam[:, used], weights[:, used]
+    lam = lam[:, used]
     u = len(used)
     inner = powers(np.exp(h[:, None] * lam), run)  # (run, k, u): e^{λ·rh}
     # the anchors e^{λ·mRUN·h}: exact every ANCHOR_POWERS-th, powers of e^{λ·RUN·h} between
@@ -252,15 +281,24 @@ def _grid(
     exact = np.exp(start[:, ::ANCHOR_POWERS, None] * lam[:, None, :])  # (k, C, u)
     between = powers(np.exp((run * h)[:, None] * lam), ANCHOR_POWERS).transpose(1, 0, 2)
     anchors = (exact[:, :, None, :] * between[:, None, :, :]).reshape(k, -1, u)
-    anchors = anchors[:, : start.shape[1]] * weights[:, None, :]
-    factors = np.empty(start.shape + (2 * u + 2,))
-    factors[:, :, :u], factors[:, :, u : 2 * u] = anchors.real, -anchors.imag
-    factors[:, :, 2 * u] = level[:, None] + drift[:, None] * start
-    factors[:, :, 2 * u + 1] = (drift * h)[:, None]
+    anchors = anchors[:, : start.shape[1]]
     runs = np.empty((k, 2 * u + 2, run))
     runs[:, :u], runs[:, u : 2 * u] = inner.real.transpose(1, 2, 0), inner.imag.transpose(1, 2, 0)
     runs[:, 2 * u], runs[:, 2 * u + 1] = 1.0, np.arange(run)
-    return (factors @ runs).reshape(k, count)
+
+    def finish(level: np.ndarray, drift: np.ndarray, weights: np.ndarray) -> np.ndarray:
+        weights = weights.copy()
+        for i, pair in enumerate(pairs):
+            weights[:, i] = np.where(pair, 2.0 * weights[:, i], weights[:, i])
+            weights[:, i + 1] = np.where(pair, 0.0, weights[:, i + 1])
+        weighted = anchors * weights[:, used][:, None, :]
+        factors = np.empty(start.shape + (2 * u + 2,))
+        factors[:, :, :u], factors[:, :, u : 2 * u] = weighted.real, -weighted.imag
+        factors[:, :, 2 * u] = level[:, None] + drift[:, None] * start
+        factors[:, :, 2 * u + 1] = (drift * h)[:, None]
+        return (factors @ runs).reshape(k, count)
+
+    return finish
 
 
 def _flow(a: np.ndarray, tau: np.ndarray) -> np.ndarray:
@@ -344,7 +382,12 @@ def exact_block(system: RampSystem, size: int = 1) -> PeriodicBlock:
     a = np.linalg.solve(k, (force - (c @ b[..., None])[..., 0])[..., None])[..., 0]
     p0 = np.concatenate([a, b], axis=-1)
     p1 = np.concatenate([b, np.zeros((m, n))], axis=-1)
-    first = replace(system, mass=mass, damping=c, stiffness=k).first_order()
+    pencil = replace(system, mass=mass, damping=c, stiffness=k)
+
+    def first(rows: Any) -> np.ndarray:
+        """The first-order matrices A of ``rows`` (only where they are needed)."""
+        return replace(pencil, mass=mass[rows], damping=c[rows], stiffness=k[rows]).first_order()
+
     eigenvalues, vectors, sure = _modes(first, mass, c, k)
     failure = np.where(broken, UNSEPARATED, SOLVED)
     # Eigenvalues that (nearly) meet -- a mode damped (nearly) critically -- have
@@ -392,15 +435,16 @@ def exact_block(system: RampSystem, size: int = 1) -> PeriodicBlock:
     # that to about 10⁻¹¹ (a review: an extended-precision residual does no better).
     modal = (modal + inverse @ (load - vectors @ modal))[..., 0]
     coefficients = np.where(modes[:, None], t[:, None] * modal / gap, 0.0)
-    matrix, origin = np.zeros_like(first), np.zeros_like(p1)
-    basis = np.broadcast_to(np.eye(2 * n), first.shape).copy()
+    matrix, origin = np.zeros((m, 2 * n, 2 * n)), np.zeros_like(p1)
+    basis = np.broadcast_to(np.eye(2 * n), matrix.shape).copy()
     if meet.any():  # balanced, B = S⁻¹·A·S; d₀ = (I - e^{BT})⁻¹·S⁻¹·p₁·T
         from scipy.linalg import matrix_balance
 
         # Balancing brings ‖B‖ near the fastest |λ| (‖A‖ holds K/M): without it expm's
         # scaling and squaring lost 3x the conditioning of a stiff system's state
-        for i in np.flatnonzero(meet).tolist():
-            matrix[i], (scale, order) = matrix_balance(first[i], permute=True, separate=True)
+        meeting = np.flatnonzero(meet)
+        for i, a in zip(meeting.tolist(), first(meeting), strict=True):
+            matrix[i], (scale, order) = matrix_balance(a, permute=True, separate=True)
             basis[i] = np.eye(2 * n)[:, order] * scale
         step = np.eye(2 * n) - _flow(matrix[meet], t[meet][:, None])[:, 0]
         load = np.linalg.solve(basis[meet], (p1[meet] * t[meet][:, None])[..., None])

@@ -5,6 +5,9 @@ matrix."""
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from typing import Any
+
 import numpy as np
 
 #: Newton steps at most that polish an eigenvalue of one or two coordinates.
@@ -15,7 +18,10 @@ SAME_ROOT = 1e-9
 
 
 def _modes(
-    first: np.ndarray, mass: np.ndarray, damping: np.ndarray, stiffness: np.ndarray
+    first: np.ndarray | Callable[[Any], np.ndarray],
+    mass: np.ndarray,
+    damping: np.ndarray,
+    stiffness: np.ndarray,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Eigenvalues and unit eigenvectors of each row's first-order matrix A, complex
     throughout, and whether each row's eigenvalues are sure (a Newton step has come
@@ -28,14 +34,20 @@ def _modes(
     has the slow pair of two overdamped masses 10¹⁴ below the fast one to 1e-14,
     where eigvals is over 1 % off. On 4096 rows of vk_variator.toml's three-mass
     state it and its Newton step take 3.9 ms, eigvals 8.2 ms and its steps 3.0.)
-    Each eigenvector is (x, λx), x the null vector of λ²M + λC + K: of one
+    ``first``: each row's first-order matrix A, or a function that gives those of
+    the rows it is given (a row whose closed form settles needs none). Each
+    eigenvector is (x, λx), x the null vector of λ²M + λC + K: of one
     coordinate 1, of two a row of that 2×2 turned a right angle, the one that
     leaves the other row the least residual against its terms. Conjugate
     eigenvalues get conjugate vectors, bit for bit."""
     n = mass.shape[-1]
+
+    def matrices(rows: Any) -> np.ndarray:
+        return first[rows] if isinstance(first, np.ndarray) else first(rows)
+
     if n > 2:
-        eigenvalues, vectors = np.linalg.eig(first)
-        return eigenvalues.astype(complex), vectors.astype(complex), np.ones(len(first), bool)
+        eigenvalues, vectors = np.linalg.eig(matrices(slice(None)))
+        return eigenvalues.astype(complex), vectors.astype(complex), np.ones(len(mass), bool)
     m = [[mass[:, i, j, None] for j in range(n)] for i in range(n)]
     c = [[damping[:, i, j, None] for j in range(n)] for i in range(n)]
     k = [[stiffness[:, i, j, None] for j in range(n)] for i in range(n)]
@@ -47,7 +59,7 @@ def _modes(
     again = np.flatnonzero(~sure | np.any(same & ~np.eye(2 * n, dtype=bool), axis=(1, 2)))
     if again.size:
         part = [[[x[again] for x in row] for row in matrix] for matrix in (m, c, k)]
-        lam[again], close = _newton(np.linalg.eigvals(first[again]).astype(complex), *part)
+        lam[again], close = _newton(np.linalg.eigvals(matrices(again)).astype(complex), *part)
         sure[again] = np.all(close, axis=-1)
     with np.errstate(all="ignore"):  # (a zero pencil, two modes alike: they meet)
         return lam, _vectors(lam, m, c, k), sure

@@ -254,8 +254,10 @@ def drive_block(case: Case, size: int, asked: Callable[[str], bool]) -> tuple[di
     values = drive_values(drive, before)
     if not machine:
         return values, declined
-    clutch = state.maxima(CLUTCH_OF_THREE)[0] if want(*chi) else nothing
-    coupling = state.maxima(three.coupling())[0] if want("antiresonance_coupling_") else nothing
+    # the clutch's and the coupling's maxima share the state's grids
+    asked_for = [(CLUTCH_OF_THREE, want(*chi)), (three.coupling(), want("antiresonance_coupling_"))]
+    found = iter(state.maxima_of([w for w, wanted in asked_for if wanted]))
+    clutch, coupling = (next(found)[0] if wanted else nothing for _, wanted in asked_for)
     kept = None
     if variant is not None:
         kept = nothing
