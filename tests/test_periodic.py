@@ -1412,6 +1412,53 @@ def test_modes_spread_beyond_double_precision_have_no_answer(monkeypatch) -> Non
     assert block.failure.tolist() == [SPREAD, periodic.SOLVED]
 
 
+def test_a_slow_mode_the_determinants_rounding_hides_has_no_answer() -> None:
+    # K all but singular (cond 2.3e12; a review's drive): the slow root of
+    # det(λ²M + λC + K) is a small difference of large products, so rounding leaves
+    # it uncertain far beyond its size, however close Newton's last step. Without
+    # the uncertainty, the closed form's root passed as sure and the maximum came out
+    # 1.689e13 against 1.442e13 (a 50-digit reference; 17 %). Further from singular
+    # (the last entry 1e-4 of itself above the others, not 1.7e-12) it is solved.
+    mass = 138.67698398438284 * np.eye(2)
+    damping = np.array(
+        [[76.55859343901597, -3.633353213004149], [4.659337520797081, 74.02890836957413]]
+    )
+    k = 32897.19748495219
+
+    def system(last: float) -> RampSystem:
+        return RampSystem(
+            mass,
+            damping,
+            np.array([[k, k], [k, last]]),
+            np.array([0.5490009626848754, 0.4401004739404364]),
+            np.array([-0.12313493951951453, -0.5356048479155123]),
+            -0.2892908861376807,
+            -1.3672530225294834,
+            2508110.7251908123,
+        )
+
+    from mdcalc.core.periodic import Unresolved
+
+    with pytest.raises(Unresolved, match="cannot be found to 8 digits"):
+        exact_periodic(system(32897.19748500871))
+    state = exact_periodic(system(k * (1.0 + 1e-4)))
+    assert np.all(np.isfinite(state.eigenvalues))
+
+
+def test_a_pair_whose_newton_steps_cross_the_axis_keeps_the_upper_one_first() -> None:
+    # a pair within 1e-8 of the real axis (a review's system): Newton's steps took
+    # the first root's imaginary part across it; the pair is put back, + first
+    from mdcalc.core.periodic.modes import _modes
+
+    mass = 2087468686350.6501 * np.eye(2)[None]
+    damping = np.array([[[0.0, 0.0], [-20157.818938127668, 26877.091917503556]]])
+    stiffness = np.diag([0.00012977046218681413, 8.651364145787609e-05])[None]
+    lam, vectors, _ = _modes(lambda rows: None, mass, damping, stiffness)
+    for i in (0, 2):
+        assert lam[0, i].imag > 0.0 and lam[0, i + 1] == np.conj(lam[0, i])
+        assert np.array_equal(vectors[0, :, i + 1], np.conj(vectors[0, :, i]))
+
+
 def test_a_singular_row_does_not_take_the_blocks_inverse_with_it() -> None:
     # numpy's batched inverse raises for the whole block when one matrix is singular;
     # the modes' inverse then goes row by row: NaN for that row (its condition is not

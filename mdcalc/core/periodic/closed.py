@@ -416,9 +416,10 @@ def exact_block(system: RampSystem, size: int = 1) -> PeriodicBlock:
         RESONANT
     )
     # modes that neither the closed form nor eigvals has within 1 % (eigvals: the
-    # slow ones beyond |λ_fast/λ_slow| ≈ 10¹³), so that Newton cannot start: no
-    # answer here (where eigenvalues meet, e^{Aτ} is taken whole, and they only set
-    # the sampling)
+    # slow ones beyond |λ_fast/λ_slow| ≈ 10¹³), so that Newton cannot start, or
+    # that the determinant's rounding leaves uncertain beyond 1e-8 of themselves (K
+    # all but singular): no answer here (where eigenvalues meet, e^{Aτ} is taken
+    # whole, and they only set the sampling)
     failure[(failure == SOLVED) & ~meet & ~sure] = SPREAD
     solved = failure == SOLVED
     meet &= solved

@@ -15,6 +15,10 @@ NEWTON_STEPS = 6
 #: Two eigenvalues polished from the closed form's starts closer than this (relative
 #: to the larger) may be one root reached twice: the row's starts are eigvals'.
 SAME_ROOT = 1e-9
+#: An eigenvalue whose determinant's rounding leaves it uncertain by more than this
+#: (relative) is not resolved: its row has no answer (the modes spread too far, or
+#: K is all but singular), unless its eigenvalues meet.
+RESOLVED = 1e-8
 
 
 def _modes(
@@ -25,7 +29,9 @@ def _modes(
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Eigenvalues and unit eigenvectors of each row's first-order matrix A, complex
     throughout, and whether each row's eigenvalues are sure (a Newton step has come
-    under 1e-8 of each; numpy's eig: always). A system of one or two coordinates
+    under 1e-8 of each, and the determinant's rounding leaves each within
+    :data:`RESOLVED` of itself, :func:`_uncertainty`; numpy's eig: always; a row
+    that meets needs neither). A system of one or two coordinates
     takes its eigenvalues as the roots of det(λ²M + λC + K), a quadratic or a
     quartic: from its closed form (:func:`_roots`), polished by Newton steps
     (:func:`_newton`); a row whose starts do not all settle, or two of which settle
@@ -61,8 +67,14 @@ def _modes(
         part = [[[x[again] for x in row] for row in matrix] for matrix in (m, c, k)]
         lam[again], close = _newton(np.linalg.eigvals(matrices(again)).astype(complex), *part)
         sure[again] = np.all(close, axis=-1)
+    for i in range(2 * n - 1):  # a pair whose Newton steps crossed the axis: + first
+        flip = (lam[:, i].imag < 0.0) & (lam[:, i + 1] == np.conj(lam[:, i]))
+        lam[flip, i : i + 2] = lam[flip, i : i + 2][:, ::-1]
     with np.errstate(all="ignore"):  # (a zero pencil, two modes alike: they meet)
-        return lam, _vectors(lam, m, c, k), sure
+        q = _pencil(lam, m, c, k)
+        terms = _terms(lam, m, c, k)
+        sure &= np.all(_uncertainty(lam, q, terms, m, c) <= RESOLVED * np.abs(lam), axis=-1)
+        return lam, _vectors(lam, q, terms), sure
 
 
 Entries = list[list[np.ndarray]]  # a 2×2 (or 1×1) matrix by its entries, (m, 1) each
@@ -73,7 +85,8 @@ def _roots(m: Entries, c: Entries, k: Entries) -> np.ndarray:
     side by side (the one above the axis first), conjugate bit for bit. The
     quadratic of one coordinate by its stable form; the quartic of two as two real
     quadratics, by Ferrari's resolvent cubic (its largest real root) in λ scaled by
-    the roots' geometric mean. NaN where a number is not finite or a root is zero."""
+    the roots' geometric mean. NaN where a number is not finite, or K of two
+    coordinates is singular; a zero root where K of one is zero."""
     if len(m) == 1:
         p, q = c[0][0] / m[0][0], k[0][0] / m[0][0]
         return _quadratic_roots(p[:, 0], q[:, 0])
@@ -198,26 +211,46 @@ def _newton(lam: np.ndarray, m: Entries, c: Entries, k: Entries) -> tuple[np.nda
     return lam, close
 
 
-def _vectors(lam: np.ndarray, m: Entries, c: Entries, k: Entries) -> np.ndarray:
-    """The unit eigenvectors (x, λx) as columns, (m, 2n, 2n): x over its norm
-    times √(1 + |λ|²), and λ times that."""
-    rows, modes = lam.shape
+def _terms(lam: np.ndarray, m: Entries, c: Entries, k: Entries) -> Entries:
+    """|λ|²|M| + |λ||C| + |K| entry by entry: what the pencil's entries round of."""
+    at = np.abs(lam)
+    size, n = at * at, range(len(m))
+    return [[size * np.abs(m[i][j]) + at * np.abs(c[i][j]) + np.abs(k[i][j]) for j in n] for i in n]
+
+
+def _uncertainty(lam: np.ndarray, q: Entries, terms: Entries, m: Entries, c: Entries) -> np.ndarray:
+    """How far each eigenvalue may lie from the root of det(λ²M + λC + K) for the
+    rounding of that determinant alone: 4ε times the terms it rounds of (each
+    product of its entries' terms by the other entry's size) over its slope. A
+    slow mode of an all but singular K (the determinant a small difference of
+    large products) is uncertain far beyond its own size; one of widely spread
+    modes is not."""
+    double = 2.0 * lam
+    dq = [[double * m[i][j] + c[i][j] for j in range(len(m))] for i in range(len(m))]
     if len(m) == 1:
+        noise, slope = terms[0][0], dq[0][0]
+    else:
+        noise = terms[0][0] * np.abs(q[1][1]) + np.abs(q[0][0]) * terms[1][1]
+        noise = noise + terms[0][1] * np.abs(q[1][0]) + np.abs(q[0][1]) * terms[1][0]
+        slope = dq[0][0] * q[1][1] + q[0][0] * dq[1][1] - dq[0][1] * q[1][0]
+        slope = slope - q[0][1] * dq[1][0]
+    return 4.0 * np.finfo(float).eps * noise / np.abs(slope)
+
+
+def _vectors(lam: np.ndarray, q: Entries, terms: Entries) -> np.ndarray:
+    """The unit eigenvectors (x, λx) as columns, (m, 2n, 2n): x over its norm
+    times √(1 + |λ|²), and λ times that (``q``: the pencil's entries at λ,
+    ``terms``: :func:`_terms`)."""
+    rows, modes = lam.shape
+    if len(q) == 1:
         x = [np.ones(lam.shape, dtype=complex)]
     else:
         # Either row turned a right angle is a null vector; the other row's residual
         # is |det| for both. The one chosen makes that residual the least against
         # the other row's terms (|λ|²|M| + |λ||C| + |K|, what its rounding is of):
         # the larger row outright can be mostly the rounding of λ² + k₁.
-        q = _pencil(lam, m, c, k)
-        at = np.abs(lam)
-        size = at * at
-
-        def terms(i: int, j: int) -> np.ndarray:
-            return size * np.abs(m[i][j]) + at * np.abs(c[i][j]) + np.abs(k[i][j])
-
-        first_row = terms(1, 0) * np.abs(q[0][1]) + terms(1, 1) * np.abs(q[0][0])
-        second_row = terms(0, 0) * np.abs(q[1][1]) + terms(0, 1) * np.abs(q[1][0])
+        first_row = terms[1][0] * np.abs(q[0][1]) + terms[1][1] * np.abs(q[0][0])
+        second_row = terms[0][0] * np.abs(q[1][1]) + terms[0][1] * np.abs(q[1][0])
         top = first_row >= second_row
         x = [np.where(top, q[0][1], q[1][1]), -np.where(top, q[0][0], q[1][0])]
     length = sum(part.real * part.real + part.imag * part.imag for part in x)
