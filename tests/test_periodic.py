@@ -1106,16 +1106,10 @@ def test_the_modes_are_eigenpairs_of_the_first_order_system(coordinates: int) ->
     # evaluates one of them)
     from mdcalc.core.periodic.modes import _modes
 
-    rng = np.random.default_rng(coordinates)
     n, m = coordinates, 400
-    q = rng.normal(size=(3, m, n, n))
-    mass = q[0] @ np.swapaxes(q[0], -1, -2) + 0.1 * np.eye(n)
-    scale = 10 ** rng.uniform(0, 10, (m, 1, 1))
-    stiffness = scale * (q[1] @ np.swapaxes(q[1], -1, -2) + 0.01 * np.eye(n))
-    damping = np.sqrt(scale) * 10 ** rng.uniform(-3, 1, (m, 1, 1)) * (q[2] @ q[2].swapaxes(-1, -2))
-    system = RampSystem(mass, damping, stiffness, np.zeros((m, n)), np.ones((m, n)), 0.0, 1.0, 1.0)
+    mass, damping, stiffness, system = _random_pencils(np.random.default_rng(coordinates), n, m)
     first = system.first_order()
-    lam, vectors, sure = _modes(first, mass, damping, stiffness)
+    lam, vectors, sure, _ = _modes(first, mass, damping, stiffness)
     assert sure.all()
     assert lam.shape == (m, 2 * n) and vectors.shape == (m, 2 * n, 2 * n)
     size = np.linalg.norm(first, axis=(-2, -1), ord=2)[:, None]
@@ -1126,6 +1120,43 @@ def test_the_modes_are_eigenpairs_of_the_first_order_system(coordinates: int) ->
     assert pairs.sum() > 100
     rows, cols = np.nonzero(pairs)
     assert np.array_equal(vectors[rows, :, cols + 1], np.conj(vectors[rows, :, cols]))
+
+
+def _random_pencils(rng: np.random.Generator, n: int, m: int) -> tuple:
+    """``m`` random systems of ``n`` coordinates: M, C and K positive definite (C
+    semi-), K spanning ten decades and C its square root's, times 10⁻³ to 10."""
+    q = rng.normal(size=(3, m, n, n))
+    mass = q[0] @ np.swapaxes(q[0], -1, -2) + 0.1 * np.eye(n)
+    scale = 10 ** rng.uniform(0, 10, (m, 1, 1))
+    stiffness = scale * (q[1] @ np.swapaxes(q[1], -1, -2) + 0.01 * np.eye(n))
+    damping = np.sqrt(scale) * 10 ** rng.uniform(-3, 1, (m, 1, 1)) * (q[2] @ q[2].swapaxes(-1, -2))
+    system = RampSystem(mass, damping, stiffness, np.zeros((m, n)), np.ones((m, n)), 0.0, 1.0, 1.0)
+    return mass, damping, stiffness, system
+
+
+@pytest.mark.parametrize("coordinates", [1, 2])
+def test_the_left_eigenvectors_are_the_inverse_of_the_modes(coordinates: int) -> None:
+    # V⁻¹ from the left eigenvectors (w(λM + C), wM)/(w(2λM + C)x): V⁻¹·V is I to
+    # the rounding of the modes' condition, 20ε·cond (numpy's inverse of V: up to
+    # 1.0ε·cond here), on random systems whose stiffnesses span ten decades. Where
+    # λwM + wC of a fast overdamped mode cancels, -wK/λ is taken (without it:
+    # 4660ε·cond)
+    from mdcalc.core.periodic.modes import _modes
+
+    n, m = coordinates, 400
+    mass, damping, stiffness, system = _random_pencils(
+        np.random.default_rng(20 + coordinates), n, m
+    )
+    _, vectors, sure, inverse = _modes(system.first_order(), mass, damping, stiffness)
+    assert sure.all() and inverse is not None
+    numpy_inverse = np.linalg.inv(vectors)
+    condition = np.linalg.norm(vectors, 1, axis=(1, 2)) * np.linalg.norm(
+        numpy_inverse, 1, axis=(1, 2)
+    )
+    error = np.linalg.norm(inverse @ vectors - np.eye(2 * n), 1, axis=(1, 2))
+    numpy_error = np.linalg.norm(numpy_inverse @ vectors - np.eye(2 * n), 1, axis=(1, 2))
+    assert np.all(error <= 20.0 * np.finfo(float).eps * condition)
+    assert np.median(error / np.maximum(numpy_error, 1e-16)) < 10.0
 
 
 def test_the_closed_forms_starts_are_each_masss_roots_by_hand() -> None:
@@ -1165,7 +1196,7 @@ def test_the_closed_forms_starts_are_each_masss_roots_by_hand() -> None:
         [[x[:, i, j, None] for j in range(2)] for i in range(2)] for x in (mass, damping, stiffness)
     ]
     starts = _roots(*entries)
-    lam, _, sure = _modes(system.first_order(), mass, damping, stiffness)
+    lam, _, sure, _ = _modes(system.first_order(), mass, damping, stiffness)
     assert sure.all()
     want = np.sort_complex(expected)
     assert np.max(np.abs(np.sort_complex(starts) - want) / np.abs(want)) < 1e-5
@@ -1200,7 +1231,7 @@ def test_starts_that_settle_on_one_root_start_again_from_eigvals(monkeypatch) ->
     a[:2, 2:] = np.eye(2)
     a[2:, :2] = -np.linalg.solve(mass[0], stiffness[0])
     a[2:, 2:] = -np.linalg.solve(mass[0], damping[0])
-    lam, _, sure = modes._modes(a[None], mass, damping, stiffness)
+    lam, _, sure, _ = modes._modes(a[None], mass, damping, stiffness)
     want = np.sort_complex(np.linalg.eigvals(a))
     assert sure.all()
     assert np.max(np.abs(np.sort_complex(lam[0]) - want) / np.abs(want)) < 1e-12
@@ -1219,7 +1250,7 @@ def test_a_stiff_overdamped_modes_slow_eigenvalue_keeps_its_digits() -> None:
     stiffness = rng.uniform(1e3, 1e4, (m, 1, 1))
     damping = 10 ** rng.uniform(3, 5.5, (m, 1, 1)) * np.sqrt(mass * stiffness)
     first = RampSystem(mass, damping, stiffness, np.zeros((m, 1)), np.ones((m, 1)), 0.0, 1.0, 1.0)
-    lam, _, _ = _modes(first.first_order(), mass, damping, stiffness)
+    lam, _, _, _ = _modes(first.first_order(), mass, damping, stiffness)
     a, c, k = mass[:, 0, 0], damping[:, 0, 0], stiffness[:, 0, 0]
     q = -(c + np.sqrt(c * c - 4 * a * k)) / 2
     slow = lam[np.arange(m), np.argmin(np.abs(lam), axis=1)]
@@ -1230,7 +1261,7 @@ def test_a_stiff_overdamped_modes_slow_eigenvalue_keeps_its_digits() -> None:
     mass, stiffness = np.eye(2)[None], np.eye(2)[None]
     damping = np.diag([1e7, 1.03e7])[None]
     first = RampSystem(mass, damping, stiffness, np.zeros((1, 2)), np.ones((1, 2)), 0.0, 1.0, 1.0)
-    lam, _, _ = _modes(first.first_order(), mass, damping, stiffness)
+    lam, _, _, _ = _modes(first.first_order(), mass, damping, stiffness)
     c = np.array([1e7, 1.03e7])
     slow = np.sort(2.0 / -(c + np.sqrt(c * c - 4.0)))
     got = np.sort(lam[0].real[np.argsort(np.abs(lam[0]))[:2]])
@@ -1306,7 +1337,7 @@ def test_each_eigenvector_leaves_both_rows_of_the_pencil_their_rounding() -> Non
     stiffness[0] = [[2520753859994.562, -614.4527758652576], [-614.4527758652576, 14.0036384572427]]
     zero, one = np.zeros((size, 2)), np.ones((size, 2))
     system = RampSystem(mass, damping, stiffness, zero, one, 0.0, 1.0, 1.0)
-    lam, vectors, _ = _modes(system.first_order(), mass, damping, stiffness)
+    lam, vectors, _, _ = _modes(system.first_order(), mass, damping, stiffness)
     at = lam[:, :, None, None]
     pencil = at * at * mass[:, None] + at * damping[:, None] + stiffness[:, None]
     terms = np.abs(at) ** 2 * np.abs(mass[:, None]) + np.abs(at) * np.abs(damping[:, None])
@@ -1453,7 +1484,7 @@ def test_a_pair_whose_newton_steps_cross_the_axis_keeps_the_upper_one_first() ->
     mass = 2087468686350.6501 * np.eye(2)[None]
     damping = np.array([[[0.0, 0.0], [-20157.818938127668, 26877.091917503556]]])
     stiffness = np.diag([0.00012977046218681413, 8.651364145787609e-05])[None]
-    lam, vectors, _ = _modes(lambda rows: None, mass, damping, stiffness)
+    lam, vectors, _, _ = _modes(lambda rows: None, mass, damping, stiffness)
     for i in (0, 2):
         assert lam[0, i].imag > 0.0 and lam[0, i + 1] == np.conj(lam[0, i])
         assert np.array_equal(vectors[0, :, i + 1], np.conj(vectors[0, :, i]))
@@ -1517,9 +1548,10 @@ def test_modes_whose_1_norm_condition_passes_1e12_take_the_matrix_exponential(
     real_modes = closed._modes
 
     def modes(first, mass, damping, stiffness):
-        eigenvalues, _, sure = real_modes(first, mass, damping, stiffness)
+        eigenvalues, _, sure, _ = real_modes(first, mass, damping, stiffness)
         vectors = np.diag([1.0, 1.0, 1.0, 1.0 / condition]).astype(complex)
-        return eigenvalues, np.broadcast_to(vectors, (len(mass), 4, 4)).copy(), sure
+        vectors = np.broadcast_to(vectors, (len(mass), 4, 4)).copy()
+        return eigenvalues, vectors, sure, np.linalg.inv(vectors)
 
     monkeypatch.setattr(closed, "_modes", modes)
     block = closed.exact_block(closed.block_of_one(system))

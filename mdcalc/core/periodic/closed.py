@@ -388,7 +388,7 @@ def exact_block(system: RampSystem, size: int = 1) -> PeriodicBlock:
         """The first-order matrices A of ``rows`` (only where they are needed)."""
         return replace(pencil, mass=mass[rows], damping=c[rows], stiffness=k[rows]).first_order()
 
-    eigenvalues, vectors, sure = _modes(first, mass, c, k)
+    eigenvalues, vectors, sure, inverse = _modes(first, mass, c, k)
     failure = np.where(broken, UNSEPARATED, SOLVED)
     # Eigenvalues that (nearly) meet -- a mode damped (nearly) critically -- have
     # (nearly) parallel eigenvectors, and the modal sum loses about ε/gap of the state
@@ -398,8 +398,9 @@ def exact_block(system: RampSystem, size: int = 1) -> PeriodicBlock:
     # which gives the modal coordinates below too (rows that meet invert I: a
     # repeated eigenvalue is the usual way to a singular V; any other row found
     # singular is inverted alone, its condition NaN: it meets)
-    plain = meet | ~np.all(np.isfinite(vectors), axis=(1, 2))
-    inverse = _inverse(np.where(plain[:, None, None], np.eye(2 * n), vectors))
+    if inverse is None:
+        plain = meet | ~np.all(np.isfinite(vectors), axis=(1, 2))
+        inverse = _inverse(np.where(plain[:, None, None], np.eye(2 * n), vectors))
     with np.errstate(all="ignore"):
         condition = np.linalg.norm(vectors, 1, axis=(1, 2)) * np.linalg.norm(
             inverse, 1, axis=(1, 2)
