@@ -752,6 +752,30 @@ def test_the_maxima_of_several_observables_are_each_ones_alone() -> None:
         assert np.array_equal(times, mixed.maxima(w)[1])
 
 
+def test_a_pairs_partner_takes_the_conjugate_of_its_exponential_bit_for_bit() -> None:
+    # where every mode's conjugate partner sits beside it, the refinement's values
+    # and rates take each pair's exponential once, the partner's as its conjugate:
+    # bit for bit what the exponential of each gives; a block with a real pair of
+    # modes (an overdamped row) takes them all
+    from mdcalc.core.periodic.closed import _Observed
+
+    rng = np.random.default_rng(31)
+    block = _wide_two_mass_block(rng, 60)
+    underdamped = np.flatnonzero(np.all(block.eigenvalues.imag != 0, axis=1))
+    rows = underdamped[:20]
+    tau = rng.uniform(0.0, 1.0, (len(rows), 7)) * block.period[rows][:, None]
+    w = np.array([0.3, -1.0, 2e-3, 1e-4])
+    sub = periodic.PeriodicBlock(*[getattr(block, f)[rows] for f in block.__dataclass_fields__])
+    paired, plain = _Observed(sub, w), _Observed(sub, w)
+    plain.paired = False
+    assert paired.paired
+    at = np.arange(len(rows))
+    assert np.array_equal(paired.observe(at, tau), plain.observe(at, tau))
+    assert np.array_equal(paired.rate(at, tau), plain.rate(at, tau))
+    overdamped = np.flatnonzero(np.any(block.eigenvalues.imag == 0, axis=1))
+    assert overdamped.size and not _Observed(block, w).paired
+
+
 # ----------------------------------------------------------------------------- property
 
 
