@@ -96,10 +96,19 @@ class ThreeMass:
         return np.sqrt(self.c2 * (j2 + self.j3) / (j2 * self.j3))
 
     def natural_frequencies(self) -> tuple[Any, Any]:
-        """Undamped, of q₁ and q₂ with the driver held [rad/s]."""
+        """Undamped, of q₁ and q₂ with the driver held [rad/s]: the roots x = ω² of
+        det(K - xM) = a·x² - b·x + c, the larger by (b + √(b² - 4ac))/2a and the
+        smaller by c over a and it (no cancellation: here a = J₂J₃', b = J₂c₂' +
+        J₃'c₁ + J₃'c₂', c = c₁c₂'; numpy's batched eigvals of M⁻¹K cost 3 ms a
+        4096-row block)."""
         s = self.system()
-        values = np.sort(np.linalg.eigvals(np.linalg.solve(s.mass, s.stiffness)).real, axis=-1)
-        return np.sqrt(values[..., 0]), np.sqrt(values[..., 1])
+        m, k = s.mass, s.stiffness
+        a = m[..., 0, 0] * m[..., 1, 1] - m[..., 0, 1] * m[..., 1, 0]
+        b = m[..., 0, 0] * k[..., 1, 1] + m[..., 1, 1] * k[..., 0, 0]
+        b = b - m[..., 0, 1] * k[..., 1, 0] - m[..., 1, 0] * k[..., 0, 1]
+        c = k[..., 0, 0] * k[..., 1, 1] - k[..., 0, 1] * k[..., 1, 0]
+        high = (b + np.sqrt(np.maximum(b * b - 4.0 * a * c, 0.0))) / (2.0 * a)
+        return np.sqrt(c / (a * high)), np.sqrt(high)
 
     def coupling(self) -> np.ndarray:
         """The observable c₂'·q₂ + b₂'·q₂' of the coupling's moment."""
