@@ -185,8 +185,9 @@ class _Observed:
         self.w_a = (self.w_s[:, None, :] @ block.matrix)[:, 0, :]
         self.kept: list[Any] = [None, None]  # the last rows asked and their numbers
         # every mode's partner beside it, in every row (an underdamped block): the
-        # partner's exponential is the first's conjugate, bit for bit (τ·λ̄ is the
-        # conjugate of τ·λ, and so is its exp), and is not taken again
+        # partner's exponential is the first's conjugate, bit for bit but for the
+        # sign of a zero imaginary part at τ = 0 (τ·λ̄ is the conjugate of τ·λ, and
+        # so is its exp; the real parts of the sums the same), and is not taken again
         lam, modes = self.lam, self.lam.shape[1]
         self.paired = modes % 2 == 0 and bool(np.all(lam[:, 1::2] == np.conj(lam[:, ::2])))
 
@@ -410,9 +411,11 @@ def exact_block(system: RampSystem, size: int = 1) -> PeriodicBlock:
     # (gap: their distance over their size). Such rows take e^{Aτ} whole, balanced.
     meet = ~broken & (_closest(eigenvalues) < MEET)
     # the 1-norm condition, from V⁻¹ (the 2-norm's SVD cost three times as much),
-    # which gives the modal coordinates below too (rows that meet invert I: a
-    # repeated eigenvalue is the usual way to a singular V; any other row found
-    # singular is inverted alone, its condition NaN: it meets)
+    # which gives the modal coordinates below too: of one or two coordinates from
+    # the left eigenvectors (_modes; NaN or inf where V is singular: the row
+    # meets); of more by numpy (rows that meet invert I: a repeated eigenvalue is
+    # the usual way to a singular V; any other row found singular is inverted
+    # alone, its condition NaN: it meets)
     if inverse is None:
         plain = meet | ~np.all(np.isfinite(vectors), axis=(1, 2))
         inverse = _inverse(np.where(plain[:, None, None], np.eye(2 * n), vectors))
@@ -522,7 +525,8 @@ def _failure(code: int, eigenvalues: np.ndarray, t: float) -> ArithmeticError:
             f"the modes spread from {float(np.min(magnitudes)):.3g} to "
             f"{float(np.max(magnitudes)):.3g} rad/s, a ratio of "
             f"{float(np.max(magnitudes) / max(np.min(magnitudes), 1e-300)):.2g}: the slow "
-            "ones cannot be found to 8 digits in double precision; outside the range solved"
+            "ones cannot be found to 8 digits in double precision (modes spread so far, or "
+            "a stiffness matrix all but singular); outside the range solved"
         )
     if code == AS_GOOD_AS_FREE:
         slow = float(np.min(magnitudes)) * t

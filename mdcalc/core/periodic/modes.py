@@ -72,9 +72,14 @@ def _modes(
         part = [[[x[again] for x in row] for row in matrix] for matrix in (m, c, k)]
         lam[again], close = _newton(np.linalg.eigvals(matrices(again)).astype(complex), *part)
         sure[again] = np.all(close, axis=-1)
-    for i in range(2 * n - 1):  # a pair whose Newton steps crossed the axis: + first
-        flip = (lam[:, i].imag < 0.0) & (lam[:, i + 1] == np.conj(lam[:, i]))
+    # a pair whose Newton steps crossed the axis: the upper one first again (each
+    # pair once: a pair repeated, p p̄ p p̄, keeps its order)
+    taken = np.zeros(len(lam), dtype=bool)
+    for i in range(2 * n - 1):
+        pair = ~taken & (lam[:, i + 1] == np.conj(lam[:, i])) & (lam[:, i].imag != 0.0)
+        flip = pair & (lam[:, i].imag < 0.0)
         lam[flip, i : i + 2] = lam[flip, i : i + 2][:, ::-1]
+        taken = pair
     with np.errstate(all="ignore"):  # (a zero pencil, two modes alike: they meet)
         q = _pencil(lam, m, c, k)
         terms = _terms(lam, m, c, k)
@@ -230,7 +235,11 @@ def _uncertainty(lam: np.ndarray, q: Entries, terms: Entries, m: Entries, c: Ent
     product of its entries' terms by the other entry's size) over its slope. A
     slow mode of an all but singular K (the determinant a small difference of
     large products) is uncertain far beyond its own size; one of widely spread
-    modes is not."""
+    modes is not. A bound, not an estimate: on a review's rows it was 54–86 times
+    the eigenvalue's true error (median; 2.5–1000 times in all), so that some
+    scenes it refuses would have had 8 digits; taken as the rounding's typical
+    size (ε times the root of the squares) it let through, among 360 such rows,
+    33 whose maxima were more than 1e-8 off, up to 17 %."""
     double = 2.0 * lam
     dq = [[double * m[i][j] + c[i][j] for j in range(len(m))] for i in range(len(m))]
     if len(m) == 1:
