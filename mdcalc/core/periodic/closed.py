@@ -10,7 +10,7 @@ from typing import Any
 
 import numpy as np
 
-from mdcalc.core.periodic.modes import _modes
+from mdcalc.core.periodic.modes import _closest, _modes
 from mdcalc.core.periodic.peaks import _samples, periodic_maxima
 from mdcalc.core.periodic.system import Observable, RampSystem, Unbounded, Unresolved
 from mdcalc.core.powers import powers
@@ -495,18 +495,6 @@ def _inverse(vectors: np.ndarray) -> np.ndarray:
 #: gap of 2.8·10⁻³), so it keeps 12 digits or more outside. A mode is taken this way
 #: within about 1.25·10⁻⁵ of critical damping.
 MEET = 1e-2
-
-
-def _closest(eigenvalues: np.ndarray) -> np.ndarray:
-    """The least distance between two eigenvalues of each row, relative to the
-    larger of the two (1 where a row has one)."""
-    lam = eigenvalues[:, :, None]
-    other = eigenvalues[:, None, :]
-    with np.errstate(all="ignore"):
-        ratio = np.abs(lam - other) / np.maximum(np.abs(lam), np.abs(other))
-    width = eigenvalues.shape[-1]
-    ratio = np.where(np.eye(width, dtype=bool), 1.0, np.where(np.isnan(ratio), 0.0, ratio))
-    return np.min(ratio, axis=(1, 2), initial=1.0)
 
 
 def _resonant(gap: np.ndarray, turns: np.ndarray) -> np.ndarray:

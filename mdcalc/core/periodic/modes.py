@@ -28,28 +28,29 @@ def _modes(
     stiffness: np.ndarray,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray | None]:
     """Eigenvalues and unit eigenvectors of each row's first-order matrix A, complex
-    throughout, whether each row's eigenvalues are sure, and the eigenvectors'
-    inverse V⁻¹ where it comes with them (one or two coordinates: its rows are
-    the left eigenvectors (w(λM + C), wM), w the left null vector of λ²M + λC + K,
-    over w(2λM + C)x: a few products a row, where numpy's batched inverse of 4×4
-    matrices cost 2.4 ms a 4096-row block; None: numpy's eig). Sure (a Newton step has come
-    under 1e-8 of each, and the determinant's rounding leaves each within
-    :data:`RESOLVED` of itself, :func:`_uncertainty`; numpy's eig: always; a row
-    that meets needs neither). A system of one or two coordinates
-    takes its eigenvalues as the roots of det(λ²M + λC + K), a quadratic or a
-    quartic: from its closed form (:func:`_roots`), polished by Newton steps
-    (:func:`_newton`); a row whose starts do not all settle, or two of which settle
-    on one root, starts again from numpy's eigvals of A. (The closed form settled
-    every row of 3000 random two-mass drives whose stiffnesses span 10³–10¹², and
-    has the slow pair of two overdamped masses 10¹⁴ below the fast one to 1e-14,
-    where eigvals is over 1 % off. On 4096 rows of vk_variator.toml's three-mass
-    state it and its Newton step take 3.9 ms, eigvals 8.2 ms and its steps 3.0.)
+    throughout; whether each row's eigenvalues are sure; and the eigenvectors'
+    inverse V⁻¹ where it comes with them (None: numpy's eig).
+
+    A system of one or two coordinates takes its eigenvalues as the roots of
+    det(λ²M + λC + K), a quadratic or a quartic: from its closed form
+    (:func:`_roots`), polished by Newton steps (:func:`_newton`); a row whose
+    starts do not all settle, or two of which settle on one root, starts again
+    from numpy's eigvals of A. (The closed form settled every row of 3000 random
+    two-mass drives whose stiffnesses span 10³–10¹², and has the slow pair of two
+    overdamped masses 10¹⁴ below the fast one to 1e-14, where eigvals is over 1 %
+    off. On 4096 rows of vk_variator.toml's three-mass state it and its Newton step
+    take 3.9 ms, eigvals 8.2 ms and its steps 3.0.) Each eigenvector is (x, λx),
+    x the null vector of λ²M + λC + K: of one coordinate 1, of two a row of that
+    2×2 turned a right angle, the one that leaves the other row the least residual
+    against its terms; conjugate eigenvalues get conjugate vectors, bit for bit.
+    V⁻¹'s rows are the left eigenvectors (w(λM + C), wM) over w(2λM + C)x, w the
+    left null vector (:func:`_vectors`: a few products a row, where numpy's batched
+    inverse of 4×4 matrices took 2.4 ms a 4096-row block). Sure: a Newton step has
+    come under 1e-8 of each eigenvalue, and the determinant's rounding leaves each
+    within :data:`RESOLVED` of itself (:func:`_uncertainty`); numpy's eig: always.
+
     ``first``: each row's first-order matrix A, or a function that gives those of
-    the rows it is given (a row whose closed form settles needs none). Each
-    eigenvector is (x, λx), x the null vector of λ²M + λC + K: of one
-    coordinate 1, of two a row of that 2×2 turned a right angle, the one that
-    leaves the other row the least residual against its terms. Conjugate
-    eigenvalues get conjugate vectors, bit for bit."""
+    the rows it is given (a row whose closed form settles needs none)."""
     n = mass.shape[-1]
 
     def matrices(rows: Any) -> np.ndarray:
@@ -64,10 +65,7 @@ def _modes(
     k = [[stiffness[:, i, j, None] for j in range(n)] for i in range(n)]
     lam, close = _newton(_roots(m, c, k), m, c, k)
     sure = np.all(close, axis=-1)
-    with np.errstate(all="ignore"):
-        gap = np.abs(lam[:, :, None] - lam[:, None, :])
-        same = gap <= SAME_ROOT * np.maximum(np.abs(lam[:, :, None]), np.abs(lam[:, None, :]))
-    again = np.flatnonzero(~sure | np.any(same & ~np.eye(2 * n, dtype=bool), axis=(1, 2)))
+    again = np.flatnonzero(~sure | (_closest(lam) <= SAME_ROOT))
     if again.size:
         part = [[[x[again] for x in row] for row in matrix] for matrix in (m, c, k)]
         lam[again], close = _newton(np.linalg.eigvals(matrices(again)).astype(complex), *part)
@@ -86,6 +84,18 @@ def _modes(
         sure &= np.all(_uncertainty(lam, q, terms, m, c) <= RESOLVED * np.abs(lam), axis=-1)
         vectors, inverse = _vectors(lam, q, terms, m, c, k)
         return lam, vectors, sure, inverse
+
+
+def _closest(eigenvalues: np.ndarray) -> np.ndarray:
+    """The least distance between two eigenvalues of each row, relative to the
+    larger of the two (1 where a row has one)."""
+    lam = eigenvalues[:, :, None]
+    other = eigenvalues[:, None, :]
+    with np.errstate(all="ignore"):
+        ratio = np.abs(lam - other) / np.maximum(np.abs(lam), np.abs(other))
+    width = eigenvalues.shape[-1]
+    ratio = np.where(np.eye(width, dtype=bool), 1.0, np.where(np.isnan(ratio), 0.0, ratio))
+    return np.min(ratio, axis=(1, 2), initial=1.0)
 
 
 Entries = list[list[np.ndarray]]  # a 2×2 (or 1×1) matrix by its entries, (m, 1) each
@@ -178,6 +188,20 @@ def _pencil(lam: np.ndarray, m: Entries, c: Entries, k: Entries) -> Entries:
     return [[square * m[i][j] + lam * c[i][j] + k[i][j] for j in size] for i in size]
 
 
+def _determinant(
+    lam: np.ndarray, q: Entries, m: Entries, c: Entries
+) -> tuple[np.ndarray, np.ndarray]:
+    """det(λ²M + λC + K) from its entries ``q`` at λ, and its slope in λ (the
+    entries' own slope 2λM + C)."""
+    double, size = 2.0 * lam, range(len(m))
+    dq = [[double * m[i][j] + c[i][j] for j in size] for i in size]
+    if len(m) == 1:
+        return q[0][0], dq[0][0]
+    det = q[0][0] * q[1][1] - q[0][1] * q[1][0]
+    slope = dq[0][0] * q[1][1] + q[0][0] * dq[1][1] - dq[0][1] * q[1][0]
+    return det, slope - q[0][1] * dq[1][0]
+
+
 def _newton(lam: np.ndarray, m: Entries, c: Entries, k: Entries) -> tuple[np.ndarray, np.ndarray]:
     """Newton steps on det(λ²M + λC + K) from each start, and whether a step has come
     under 1e-8 of each eigenvalue.
@@ -204,14 +228,7 @@ def _newton(lam: np.ndarray, m: Entries, c: Entries, k: Entries) -> tuple[np.nda
             at, going = lam[rows], going[np.any(going, axis=-1)]
             entries = [[[x[rows] for x in row] for row in matrix] for matrix in (m, c, k)]
         q = _pencil(at, *entries)
-        double, (m_, c_, _) = 2.0 * at, entries
-        dq = [[double * m_[i][j] + c_[i][j] for j in range(len(m))] for i in range(len(m))]
-        if len(m) == 1:
-            det, slope = q[0][0], dq[0][0]
-        else:
-            det = q[0][0] * q[1][1] - q[0][1] * q[1][0]
-            slope = dq[0][0] * q[1][1] + q[0][0] * dq[1][1] - dq[0][1] * q[1][0]
-            slope = slope - q[0][1] * dq[1][0]
+        det, slope = _determinant(at, q, *entries[:2])
         with np.errstate(all="ignore"):
             step = det / slope
             size = np.abs(step) / np.abs(at)
@@ -240,15 +257,12 @@ def _uncertainty(lam: np.ndarray, q: Entries, terms: Entries, m: Entries, c: Ent
     scenes it refuses would have had 8 digits; taken as the rounding's typical
     size (ε times the root of the squares) it let through, among 360 such rows,
     33 whose maxima were more than 1e-8 off, up to 17 %."""
-    double = 2.0 * lam
-    dq = [[double * m[i][j] + c[i][j] for j in range(len(m))] for i in range(len(m))]
+    slope = _determinant(lam, q, m, c)[1]
     if len(m) == 1:
-        noise, slope = terms[0][0], dq[0][0]
+        noise = terms[0][0]
     else:
         noise = terms[0][0] * np.abs(q[1][1]) + np.abs(q[0][0]) * terms[1][1]
         noise = noise + terms[0][1] * np.abs(q[1][0]) + np.abs(q[0][1]) * terms[1][0]
-        slope = dq[0][0] * q[1][1] + q[0][0] * dq[1][1] - dq[0][1] * q[1][0]
-        slope = slope - q[0][1] * dq[1][0]
     return 4.0 * np.finfo(float).eps * noise / np.abs(slope)
 
 
