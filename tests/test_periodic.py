@@ -1591,3 +1591,67 @@ def test_modes_whose_1_norm_condition_passes_1e12_take_the_matrix_exponential(
     assert closed._closest(block.eigenvalues)[0] > closed.MEET
     assert block.failure[0] == periodic.SOLVED
     assert bool(block.meet[0]) is meets
+
+
+def test_a_peak_midway_between_samples_within_its_curvatures_reach_is_refined() -> None:
+    # f = cos 4πτ + 1e-3·cos(2πτ - 0.4): two peaks 1.8e-3 apart, the higher one
+    # (from a bounded scalar search, to 1e-14) midway between two of 33 samples,
+    # which lie 0.0181 below it, the lower one beside a sample. The sample nearest
+    # the lower peak is the best by 0.0162; the reach |f''|·h²/8 = 0.01813, from the
+    # bound (4π)² + 1e-3·(2π)² of |f''|, takes the higher one in and finds it. A
+    # quarter of that reach would answer the lower peak, 1.8e-3 low
+    from scipy.optimize import minimize_scalar
+
+    samples, small = 33, 1e-3
+
+    def f(tau: np.ndarray) -> np.ndarray:
+        return np.cos(4.0 * math.pi * tau) + small * np.cos(2.0 * math.pi * tau - 0.4)
+
+    def slope(tau: np.ndarray) -> np.ndarray:
+        return -4.0 * math.pi * np.sin(4.0 * math.pi * tau) - small * 2.0 * math.pi * np.sin(
+            2.0 * math.pi * tau - 0.4
+        )
+
+    found = [
+        minimize_scalar(lambda t: -f(t), bounds=(c - 0.1, c + 0.1), method="bounded",
+                        options={"xatol": 1e-14}).x
+        for c in (0.0, 0.5)
+    ]  # fmt: skip
+    high = max(found, key=f)
+    shift = high - 0.5 / samples  # the higher peak midway between samples 0 and 1
+
+    def observe(rows: np.ndarray, tau: np.ndarray) -> np.ndarray:
+        return f(tau + shift) + 0.0 * rows[:, None]
+
+    def rate(rows: np.ndarray, tau: np.ndarray) -> np.ndarray:
+        return slope(tau + shift) + 0.0 * rows[:, None]
+
+    grid = f(np.arange(samples) / samples + shift)
+    assert np.argmax(grid) not in (0, 1)  # the best sample is beside the lower peak
+    curvature = np.array([(4.0 * math.pi) ** 2 + small * (2.0 * math.pi) ** 2])
+    values, times = periodic.periodic_maxima(
+        observe, rate, np.array([1.0]), samples, np.arange(1),
+        bounds=(curvature, np.array([1.0 + small])),
+    )  # fmt: skip
+    assert values[0] == pytest.approx(f(high), abs=1e-12)
+    assert times[0] == pytest.approx(0.5 / samples, abs=1e-7)
+
+
+def test_the_bounds_of_an_observed_state_hold_over_its_period() -> None:
+    # the search's reach rests on Σ|wᵢ||λᵢ|² bounding |w·y''| and |level| +
+    # |drift|·T + Σ|wᵢ| bounding |w·y|: over 12 random two-coordinate drives and
+    # each coordinate, the second derivative from the rate's central differences
+    # (4·10⁴ steps a period) and the state itself stay within them
+    from mdcalc.core.periodic.closed import _Observed
+
+    for system in _two_coordinate_block(np.random.default_rng(11), 13)[1:]:
+        block = periodic.exact_periodic(system).block()
+        period = float(block.period[0])
+        tau = np.linspace(0.0, period, 40_001)[None, :]
+        h = tau[0, 1]
+        for w in np.eye(4):
+            seen = _Observed(block, w)
+            rows = np.arange(1)
+            second = np.diff(seen.rate(rows, tau[:, 1:-1] + 0.5 * h)[0]) / h
+            assert np.max(np.abs(second)) <= seen.curvature[0] * (1.0 + 1e-3)
+            assert np.max(np.abs(seen.observe(rows, tau))) <= seen.size[0] * (1.0 + 1e-12)

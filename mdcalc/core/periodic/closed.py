@@ -162,8 +162,9 @@ class PeriodicBlock:
                         else:
                             grid = grid_of(one.level[rows], one.drift[rows], one.weights[rows])
                             sampler, slope = one.observe, one.rate
+                        bounds = None if meet else (one.curvature[rows], one.size[rows])
                         values[rows], times[rows] = periodic_maxima(
-                            sampler, slope, self.period[rows], int(count), rows, grid
+                            sampler, slope, self.period[rows], int(count), rows, grid, bounds=bounds
                         )
         return [(values, times, samples, resolved) for values, times in found]
 
@@ -180,9 +181,19 @@ class _Observed:
         self.weights = (w[:, None, :] @ block.vectors)[:, 0, :] * block.coefficients
         self.slopes = self.weights * self.lam
         self.level, self.drift = np.sum(w * block.p0, axis=-1), np.sum(w * block.p1, axis=-1)
+        # bounds of |w·y''| and |w·y| over a period, from each mode's weight at its
+        # largest, for the search's reach (of the modal rows)
+        with np.errstate(all="ignore"):
+            grow = np.maximum(1.0, np.exp(self.lam.real * block.period[:, None]))
+        amplitude = np.abs(self.weights) * grow
+        self.curvature = np.sum(amplitude * np.abs(self.lam) ** 2, axis=-1)
+        self.size = np.abs(self.level) + np.abs(self.drift) * block.period
+        self.size += np.sum(amplitude, axis=-1)
         # the rows that meet observe w·S·e^{Bτ}·d₀ and its rate w·S·B·e^{Bτ}·d₀
-        self.w_s = (w[:, None, :] @ block.basis)[:, 0, :]
-        self.w_a = (self.w_s[:, None, :] @ block.matrix)[:, 0, :]
+        meet = np.flatnonzero(block.meet)
+        self.w_s, self.w_a = np.zeros((m, width)), np.zeros((m, width))
+        self.w_s[meet] = (w[meet, None, :] @ block.basis[meet])[:, 0, :]
+        self.w_a[meet] = (self.w_s[meet, None, :] @ block.matrix[meet])[:, 0, :]
         self.kept: list[Any] = [None, None]  # the last rows asked and their numbers
         # every mode's partner beside it, in every row (an underdamped block): the
         # partner's exponential is the first's conjugate, bit for bit but for the

@@ -93,6 +93,7 @@ def periodic_maxima(
     rows: np.ndarray,
     sampled: np.ndarray | None = None,
     candidates: int = 4096,
+    bounds: tuple[np.ndarray, np.ndarray] | None = None,
 ) -> tuple[np.ndarray, np.ndarray]:
     """Largest value of a smooth periodic function over [0, T) for each of a block
     of rows (``rows`` names them to ``observe`` and ``rate``): values and times.
@@ -100,11 +101,17 @@ def periodic_maxima(
     Every sampled local maximum within reach of the best sample is refined, all at
     once, by regula falsi on the derivative between its neighbours (the state is
     continuous across the period's end, its rate need not be: a peak at τ = 0 is
-    sought on either side of it). With 16 samples per period of the fastest mode a
-    sample lies at most 1 - cos(π/16) ≈ 2 % of that mode's amplitude below its
-    peak, so peaks more than 5 % of the sampled range below the best cannot win;
-    when many ringing peaks tie, all of them are refined (up to ``candidates`` a
-    row, the largest first)."""
+    sought on either side of it); when many ringing peaks tie, all of them are
+    refined (up to ``candidates`` a row, the largest first).
+
+    Within reach: ``bounds``, each row's bound of |f''| over the period and of |f|,
+    give it exactly. A peak lies at most half a sample step from a sample, and
+    above it by at most |f''|·h²/8, so a peak beside samples lower than the best by
+    more than that (and the grid's rounding: 1e-12 of |f|, some 70 times it) cannot
+    win. Without
+    them: with 16 samples per period of the fastest mode a sample lies at most
+    1 - cos(π/16) ≈ 2 % of that mode's amplitude below its peak, and peaks more
+    than 5 % of the sampled range below the best are taken not to win."""
     line = np.arange(len(rows))
     step = period / samples
     if sampled is None:
@@ -113,10 +120,12 @@ def periodic_maxima(
         values = sampled
     top = np.argmax(values, axis=1)  # a local maximum of its row, or a row of NaN
     best_value, best_time = values[line, top], top * step
-    margin = 0.05 * (best_value - np.min(values, axis=1))
-    # the best sample's own value, exactly (the grid's carries its products' rounding;
-    # a row of NaN stays NaN)
-    exact = np.where(np.isnan(best_value), best_value, observe(rows, best_time[:, None])[:, 0])
+    if bounds is None:
+        margin = 0.05 * (best_value - np.min(values, axis=1))
+        size = np.abs(best_value) + 20.0 * margin
+    else:
+        curvature, size = bounds
+        margin = curvature * step * step / 8.0 + 1e-12 * size
     # the samples within reach of the best (few: one comparison and a flat search),
     # then the local maxima among them, neighbours taken across the period's end
     # (a broad peak holds many such samples: they take one flat index each, and only
@@ -164,8 +173,7 @@ def periodic_maxima(
     # not where its slopes move the value by less than 1e-12 of the row's size (a
     # flat state, whose every sample ties: a resolved state with both end slopes
     # that small is flat between them)
-    size = (np.abs(best_value) + 20.0 * margin)[owner]
-    moves = np.maximum(np.abs(g_low), np.abs(g_high)) * (high - low) > 1e-12 * size
+    moves = np.maximum(np.abs(g_low), np.abs(g_high)) * (high - low) > 1e-12 * size[owner]
     scan = np.flatnonzero(
         ~((g_low > 0.0) & (g_high < 0.0)) & np.isfinite(g_low) & np.isfinite(g_high) & moves
     )
@@ -185,7 +193,7 @@ def periodic_maxima(
     g_low, g_high = g_low[inside], g_high[inside]
     who = rows[owner]
     if len(owner) == 0:
-        return exact, best_time
+        return _best(observe, rows, best_value, best_time, owner, low, best_value[owner])
     # The slope's root by regula falsi, Illinois' way (the end that stays twice has
     # its slope halved): superlinear, a rate evaluation a step, and never outside
     # the bracket; from a bracket of two sample steps 16 steps reach the rounding.
@@ -219,12 +227,37 @@ def periodic_maxima(
         was_up, was_down = up, ~up
     done[active] = np.where(np.abs(g_low) <= np.abs(g_high), low, high)
     middle = done % period[owner]
-    who = rows[owner]
-    refined = observe(who, middle[:, None])[:, 0]
-    order = np.lexsort((-refined, owner))  # each row's best refined peak first
-    first = order[np.r_[True, owner[order][1:] != owner[order][:-1]]]
-    best_value = exact
-    better = refined[first] > best_value[owner[first]]
-    best_value[owner[first][better]] = refined[first][better]
-    best_time[owner[first][better]] = middle[first][better]
-    return best_value, best_time
+    refined = observe(rows[owner], middle[:, None])[:, 0]
+    if np.any(owner[1:] <= owner[:-1]):  # a row with several (the usual: one a row)
+        order = np.lexsort((-refined, owner))  # each row's best refined peak first
+        first = order[np.r_[True, owner[order][1:] != owner[order][:-1]]]
+        owner, middle, refined = owner[first], middle[first], refined[first]
+    clear = None if bounds is None else refined > best_value[owner] + 1e-12 * size[owner]
+    return _best(observe, rows, best_value, best_time, owner, middle, refined, clear)
+
+
+def _best(
+    observe: Sampler,
+    rows: np.ndarray,
+    sampled: np.ndarray,
+    time: np.ndarray,
+    owner: np.ndarray,
+    middle: np.ndarray,
+    refined: np.ndarray,
+    clear: np.ndarray | None = None,
+) -> tuple[np.ndarray, np.ndarray]:
+    """Each row's best sample (``sampled`` its value, at ``time``) or its best
+    refined peak (``refined`` at ``middle``, of the rows ``owner``), whichever is
+    higher: the sample's value taken exactly (the grid's carries its products'
+    rounding; a row of NaN stays NaN), but where its peak is ``clear`` of it by
+    more than that rounding."""
+    best, time = sampled.copy(), time.copy()
+    exact = np.ones(len(rows), dtype=bool)
+    if clear is not None:
+        exact[owner[clear]] = False
+    exact &= ~np.isnan(sampled)
+    at = np.flatnonzero(exact)
+    best[at] = observe(rows[at], time[at, None])[:, 0]
+    better = refined > best[owner]
+    best[owner[better]], time[owner[better]] = refined[better], middle[better]
+    return best, time
