@@ -1655,3 +1655,59 @@ def test_the_bounds_of_an_observed_state_hold_over_its_period() -> None:
             second = np.diff(seen.rate(rows, tau[:, 1:-1] + 0.5 * h)[0]) / h
             assert np.max(np.abs(second)) <= seen.curvature[0] * (1.0 + 1e-3)
             assert np.max(np.abs(seen.observe(rows, tau))) <= seen.size[0] * (1.0 + 1e-12)
+
+
+def _counted_cosine_peak(
+    peak_at: float, sign: float
+) -> tuple[tuple[np.ndarray, np.ndarray], dict[str, int]]:
+    """periodic_maxima on cos 2π(τ - τ*) over 256 samples of a period of 1 s, its
+    ``bend`` giving the second derivative times ``sign``: values, times, and the
+    calls of ``bend`` and of the rate."""
+    two_pi = 2.0 * math.pi
+    calls = {"bend": 0, "rate": 0}
+
+    def observe(rows: np.ndarray, tau: np.ndarray) -> np.ndarray:
+        return np.cos(two_pi * (tau - peak_at)) + 0.0 * rows[:, None]
+
+    def rate(rows: np.ndarray, tau: np.ndarray) -> np.ndarray:
+        calls["rate"] += 1
+        return -two_pi * np.sin(two_pi * (tau - peak_at)) + 0.0 * rows[:, None]
+
+    def bend(rows: np.ndarray, tau: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        calls["bend"] += 1
+        return rate(rows, tau), -sign * two_pi**2 * observe(rows, tau)
+
+    bounds = (np.array([two_pi**2]), np.array([1.0]))
+    found = periodic.periodic_maxima(
+        observe, rate, np.array([1.0]), 256, np.arange(1), bounds=bounds, bend=bend
+    )
+    return found, calls
+
+
+@pytest.mark.parametrize("peak_at", [0.3127, 0.0])
+def test_a_peak_inside_the_period_is_found_by_newton_steps_from_its_parabola(
+    peak_at: float,
+) -> None:
+    # f = cos 2π(τ - τ*) over 256 samples: a peak between two samples inside the
+    # period is found from the vertex of its samples' parabola by Newton's steps on
+    # the rate, to 1e-14 of a step, in at most three calls of ``bend`` and none of
+    # the rate alone; a peak on the sample τ = 0 (where the rate may jump) is left
+    # to the brackets either side of it, and found there
+    (values, times), calls = _counted_cosine_peak(peak_at, 1.0)
+    assert values[0] == pytest.approx(1.0, abs=1e-15)
+    assert times[0] == pytest.approx(peak_at, abs=1e-14 / 256)
+    if peak_at:
+        assert calls["bend"] <= 3 and calls["rate"] == calls["bend"]
+    else:
+        assert calls["bend"] == 0 and calls["rate"] > 2
+
+
+def test_newton_steps_that_find_the_rate_rising_leave_the_peak_to_the_brackets() -> None:
+    # a ``bend`` whose second derivative has the wrong sign (a trough, to Newton):
+    # its first step is refused (taken, the steps walk away from the peak) and the
+    # peak found by regula falsi between its neighbours all the same, to 1e-12 of
+    # a step
+    (values, times), calls = _counted_cosine_peak(0.61803, -1.0)
+    assert values[0] == pytest.approx(1.0, abs=1e-15)
+    assert times[0] == pytest.approx(0.61803, abs=1e-12 / 256)
+    assert calls["bend"] == 1 and calls["rate"] > 3  # the brackets' ends and steps

@@ -164,8 +164,9 @@ class PeriodicBlock:
                             sampler, slope = one.observe, one.rate
                         bounds = None if meet else (one.curvature[rows], one.size[rows])
                         values[rows], times[rows] = periodic_maxima(
-                            sampler, slope, self.period[rows], int(count), rows, grid, bounds=bounds
-                        )
+                            sampler, slope, self.period[rows], int(count), rows, grid,
+                            bounds=bounds, bend=None if meet else one.bend,
+                        )  # fmt: skip
         return [(values, times, samples, resolved) for values, times in found]
 
 
@@ -221,13 +222,24 @@ class _Observed:
         return self.level[rows][:, None] + self.drift[rows][:, None] * tau + _real_sum(modal)
 
     def rate(self, rows: np.ndarray, tau: np.ndarray) -> np.ndarray:
-        kept = self.kept
-        if kept[0] is not rows:  # the refinement asks about the same rows each step
-            lam, slopes = self.lam[rows][:, None, :], self.slopes[rows][:, None, :]
-            kept[:] = [rows, (lam, slopes, self.drift[rows])]
-        lam_rows, slope_rows, drift_rows = kept[1]
+        lam_rows, slope_rows, drift_rows = self._rows(rows)
         modal = self._exp(tau, lam_rows) * slope_rows
         return drift_rows[:, None] + _real_sum(modal)
+
+    def bend(self, rows: np.ndarray, tau: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """The rate and its own rate, from one exponential of each mode."""
+        lam_rows, slope_rows, drift_rows = self._rows(rows)
+        modal = self._exp(tau, lam_rows) * slope_rows
+        return drift_rows[:, None] + _real_sum(modal), _real_sum(modal * lam_rows)
+
+    def _rows(self, rows: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """λ, w·λ and the drift of ``rows`` (kept: the refinement asks about the same
+        rows each step)."""
+        kept = self.kept
+        if kept[0] is not rows:
+            lam, slopes = self.lam[rows][:, None, :], self.slopes[rows][:, None, :]
+            kept[:] = [rows, (lam, slopes, self.drift[rows])]
+        return kept[1]
 
     def observe_flow(self, rows: np.ndarray, tau: np.ndarray) -> np.ndarray:
         b = self.block

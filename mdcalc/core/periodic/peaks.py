@@ -12,6 +12,8 @@ import numpy as np
 
 from mdcalc.core.search import highest_fall
 
+#: Newton steps that locate a sampled peak from its samples' parabola.
+NEWTON_STEPS = 4
 #: Regula falsi (Illinois) steps that locate a sampled peak on its slope.
 REGULA_FALSI_STEPS = 16
 #: Parts a bracket whose slope keeps its sign is scanned in for a peak.
@@ -94,6 +96,7 @@ def periodic_maxima(
     sampled: np.ndarray | None = None,
     candidates: int = 4096,
     bounds: tuple[np.ndarray, np.ndarray] | None = None,
+    bend: Callable[[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]] | None = None,
 ) -> tuple[np.ndarray, np.ndarray]:
     """Largest value of a smooth periodic function over [0, T) for each of a block
     of rows (``rows`` names them to ``observe`` and ``rate``): values and times.
@@ -102,7 +105,10 @@ def periodic_maxima(
     once, by regula falsi on the derivative between its neighbours (the state is
     continuous across the period's end, its rate need not be: a peak at τ = 0 is
     sought on either side of it); when many ringing peaks tie, all of them are
-    refined (up to ``candidates`` a row, the largest first).
+    refined (up to ``candidates`` a row, the largest first). Given ``bend`` (the rate
+    and its own rate at times of given rows), a peak between two samples inside the
+    period is found by Newton's steps from the parabola through its three samples
+    (:func:`_newton`), where they settle; the others as above.
 
     Within reach: ``bounds``, each row's bound of |f''| over the period and of |f|,
     give it exactly. A peak lies at most half a sample step from a sample, and
@@ -144,10 +150,68 @@ def periodic_maxima(
     if crowded.size:  # many ringing ties: a row's largest ``candidates``
         keep = np.ones(len(owner), dtype=bool)
         for i in crowded:
-            found = np.flatnonzero(owner == i)
-            keep[found] = False
-            keep[found[np.argsort(here[found])[::-1][:candidates]]] = True
+            mine = np.flatnonzero(owner == i)
+            keep[mine] = False
+            keep[mine[np.argsort(here[mine])[::-1][:candidates]]] = True
         owner, where = owner[keep], where[keep]
+    settled_owner, settled_time = owner[:0], np.empty(0)
+    if bend is not None:  # the peaks between two samples by Newton steps, the rest by brackets
+        settled_owner, settled_time, left = _newton(bend, rows, owner, where, flat, samples, step)
+        owner, where = owner[left], where[left]
+    owner, middle = _bracketed(observe, rate, rows, owner, where, samples, step, period, size)
+    owner, middle = np.concatenate([settled_owner, owner]), np.concatenate([settled_time, middle])
+    refined = observe(rows[owner], middle[:, None])[:, 0]
+    if np.any(owner[1:] <= owner[:-1]):  # a row with several (the usual: one a row)
+        order = np.lexsort((-refined, owner))  # each row's best refined peak first
+        first = order[np.r_[True, owner[order][1:] != owner[order][:-1]]]
+        owner, middle, refined = owner[first], middle[first], refined[first]
+    clear = None if bounds is None else refined > best_value[owner] + 1e-12 * size[owner]
+    return _best(observe, rows, best_value, best_time, owner, middle, refined, clear)
+
+
+def _best(
+    observe: Sampler,
+    rows: np.ndarray,
+    sampled: np.ndarray,
+    time: np.ndarray,
+    owner: np.ndarray,
+    middle: np.ndarray,
+    refined: np.ndarray,
+    clear: np.ndarray | None = None,
+) -> tuple[np.ndarray, np.ndarray]:
+    """Each row's best sample (``sampled`` its value, at ``time``) or its best
+    refined peak (``refined`` at ``middle``, of the rows ``owner``), whichever is
+    higher: the sample's value taken exactly (the grid's carries its products'
+    rounding; a row of NaN stays NaN), but where its peak is ``clear`` of it by
+    more than that rounding."""
+    best, time = sampled.copy(), time.copy()
+    exact = np.ones(len(rows), dtype=bool)
+    if clear is not None:
+        exact[owner[clear]] = False
+    exact &= ~np.isnan(sampled)
+    at = np.flatnonzero(exact)
+    best[at] = observe(rows[at], time[at, None])[:, 0]
+    better = refined > best[owner]
+    best[owner[better]], time[owner[better]] = refined[better], middle[better]
+    return best, time
+
+
+def _bracketed(
+    observe: Sampler,
+    rate: Sampler,
+    rows: np.ndarray,
+    owner: np.ndarray,
+    where: np.ndarray,
+    samples: int,
+    step: np.ndarray,
+    period: np.ndarray,
+    size: np.ndarray,
+) -> tuple[np.ndarray, np.ndarray]:
+    """The peaks beside sampled local maxima (of the rows ``owner``, at samples
+    ``where``) by regula falsi on the rate between the neighbours: the rows that
+    have one and its time."""
+    if not owner.size:
+        return owner, np.empty(0)
     # Each peak's bracket is its two neighbours, within [0, T]: the rate may jump
     # at τ = 0 (a velocity's rate is the acceleration, and the load jumps there),
     # and regula falsi across a jump need not settle. A peak at the sample τ = 0 has
@@ -193,7 +257,7 @@ def periodic_maxima(
     g_low, g_high = g_low[inside], g_high[inside]
     who = rows[owner]
     if len(owner) == 0:
-        return _best(observe, rows, best_value, best_time, owner, low, best_value[owner])
+        return owner, low
     # The slope's root by regula falsi, Illinois' way (the end that stays twice has
     # its slope halved): superlinear, a rate evaluation a step, and never outside
     # the bracket; from a bracket of two sample steps 16 steps reach the rounding.
@@ -226,38 +290,54 @@ def periodic_maxima(
         high, g_high = np.where(up, high, middle), np.where(up, g_high, g)
         was_up, was_down = up, ~up
     done[active] = np.where(np.abs(g_low) <= np.abs(g_high), low, high)
-    middle = done % period[owner]
-    refined = observe(rows[owner], middle[:, None])[:, 0]
-    if np.any(owner[1:] <= owner[:-1]):  # a row with several (the usual: one a row)
-        order = np.lexsort((-refined, owner))  # each row's best refined peak first
-        first = order[np.r_[True, owner[order][1:] != owner[order][:-1]]]
-        owner, middle, refined = owner[first], middle[first], refined[first]
-    clear = None if bounds is None else refined > best_value[owner] + 1e-12 * size[owner]
-    return _best(observe, rows, best_value, best_time, owner, middle, refined, clear)
+    return owner, done % period[owner]
 
 
-def _best(
-    observe: Sampler,
+def _newton(
+    bend: Callable[[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]],
     rows: np.ndarray,
-    sampled: np.ndarray,
-    time: np.ndarray,
     owner: np.ndarray,
-    middle: np.ndarray,
-    refined: np.ndarray,
-    clear: np.ndarray | None = None,
-) -> tuple[np.ndarray, np.ndarray]:
-    """Each row's best sample (``sampled`` its value, at ``time``) or its best
-    refined peak (``refined`` at ``middle``, of the rows ``owner``), whichever is
-    higher: the sample's value taken exactly (the grid's carries its products'
-    rounding; a row of NaN stays NaN), but where its peak is ``clear`` of it by
-    more than that rounding."""
-    best, time = sampled.copy(), time.copy()
-    exact = np.ones(len(rows), dtype=bool)
-    if clear is not None:
-        exact[owner[clear]] = False
-    exact &= ~np.isnan(sampled)
-    at = np.flatnonzero(exact)
-    best[at] = observe(rows[at], time[at, None])[:, 0]
-    better = refined > best[owner]
-    best[owner[better]], time[owner[better]] = refined[better], middle[better]
-    return best, time
+    where: np.ndarray,
+    flat: np.ndarray,
+    samples: int,
+    step: np.ndarray,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The peaks beside sampled local maxima inside the period (the rows ``owner``,
+    at samples ``where`` of ``flat``, the rows' samples end to end) by Newton's steps
+    on the rate, from the vertex of the parabola through the three samples: the
+    rows whose peak settled, its time, and which candidates are left to the
+    brackets (at the period's ends, where the rate may jump; a flat top; a step
+    that finds the rate rising, leaves the two samples either side or does not
+    settle within :data:`NEWTON_STEPS`).
+
+    The vertex is near the peak (its error shrinks with (hλ)², for a mode of λ), and
+    each step squares the error. A candidate settles once its step is under 1e-7 of
+    a sample step, and takes that step: its time is then within some 1e-14 of a
+    step (regula falsi's 1e-12), for two or three evaluations of the rate and its
+    rate where regula falsi took six or seven of the rate."""
+    inner = np.flatnonzero((where >= 1) & (where <= samples - 2))
+    at = owner[inner] * samples + where[inner]
+    before, top, after = flat[at - 1], flat[at], flat[at + 1]
+    h = step[owner[inner]]
+    with np.errstate(all="ignore"):
+        tau = (where[inner] + 0.5 * (before - after) / (before - 2.0 * top + after)) * h
+    low, high = (where[inner] - 1) * h, (where[inner] + 1) * h
+    done = np.full(len(inner), np.nan)
+    active = np.flatnonzero(np.isfinite(tau))
+    tau, low, high, h = tau[active], low[active], high[active], h[active]
+    for _ in range(NEWTON_STEPS if active.size else 0):
+        g, curve = bend(rows[owner[inner[active]]], tau[:, None])
+        with np.errstate(all="ignore"):
+            move = -g[:, 0] / curve[:, 0]
+        tau = tau + move
+        bad = ~((curve[:, 0] < 0.0) & (tau >= low) & (tau <= high))  # (NaN: bad)
+        settled = ~bad & (np.abs(move) <= 1e-7 * h)
+        done[active[settled]] = tau[settled]
+        go = ~bad & ~settled
+        active, tau, low, high, h = active[go], tau[go], low[go], high[go], h[go]
+        if not active.size:
+            break
+    ok = np.isfinite(done)
+    left_out = np.ones(len(owner), dtype=bool)
+    left_out[inner[ok]] = False
+    return owner[inner[ok]], done[ok], left_out
