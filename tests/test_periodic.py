@@ -22,7 +22,7 @@ Every expected value is computed in this file, never by the module under test:
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 import pytest
@@ -1133,7 +1133,7 @@ def test_the_modes_are_eigenpairs_of_the_first_order_system(coordinates: int) ->
     n, m = coordinates, 400
     mass, damping, stiffness, system = _random_pencils(np.random.default_rng(coordinates), n, m)
     first = system.first_order()
-    lam, vectors, sure, _ = _modes(first, mass, damping, stiffness)
+    lam, vectors, sure, _, _ = _modes(first, mass, damping, stiffness)
     assert sure.all()
     assert lam.shape == (m, 2 * n) and vectors.shape == (m, 2 * n, 2 * n)
     size = np.linalg.norm(first, axis=(-2, -1), ord=2)[:, None]
@@ -1173,7 +1173,7 @@ def test_the_left_eigenvectors_are_the_inverse_of_the_modes(coordinates: int) ->
     mass, damping, stiffness, system = _random_pencils(
         np.random.default_rng(20 + coordinates), n, m
     )
-    _, vectors, sure, inverse = _modes(system.first_order(), mass, damping, stiffness)
+    _, vectors, sure, inverse, _ = _modes(system.first_order(), mass, damping, stiffness)
     assert sure.all() and inverse is not None
     numpy_inverse = np.linalg.inv(vectors)
     condition = np.linalg.norm(vectors, 1, axis=(1, 2)) * np.linalg.norm(
@@ -1183,6 +1183,34 @@ def test_the_left_eigenvectors_are_the_inverse_of_the_modes(coordinates: int) ->
     numpy_error = np.linalg.norm(numpy_inverse @ vectors - np.eye(2 * n), 1, axis=(1, 2))
     assert np.all(error <= 20.0 * np.finfo(float).eps * condition)
     assert np.median(error / np.maximum(numpy_error, 1e-16)) < 10.0
+
+
+@pytest.mark.parametrize("coordinates", [1, 2])
+def test_an_underdamped_blocks_modes_taken_by_halves_are_those_taken_whole(
+    coordinates: int,
+) -> None:
+    # every row's modes in conjugate pairs: the vectors, their inverse and whether
+    # each row is sure are taken for the first of each pair and conjugated for its
+    # partner, and are those of every mode taken alone, bit for bit (400 random
+    # lightly damped systems, stiffnesses over ten decades)
+    from mdcalc.core.periodic import modes
+
+    n, m = coordinates, 400
+    mass, damping, stiffness, system = _random_pencils(
+        np.random.default_rng(40 + coordinates), n, m
+    )
+    damping = 1e-4 * damping
+    system = replace(system, damping=damping)
+    lam, vectors, sure, inverse, _ = modes._modes(system.first_order(), mass, damping, stiffness)
+    assert np.all(lam[:, 1::2] == np.conj(lam[:, ::2])) and np.all(lam.imag[:, ::2] > 0.0)
+    entries = [[[x[:, i, j, None] for j in range(n)] for i in range(n)]
+               for x in (mass, damping, stiffness)]  # fmt: skip
+    q, terms = modes._pencil(lam, *entries), modes._terms(lam, *entries)
+    whole, whole_inverse = modes._vectors(lam, q, terms, *entries)
+    resolved = modes._uncertainty(lam, q, terms, *entries[:2]) <= modes.RESOLVED * np.abs(lam)
+    assert np.array_equal(vectors, whole) and np.array_equal(inverse, whole_inverse)
+    assert np.array_equal(sure, sure & np.all(resolved, axis=-1))
+    assert sure.all()
 
 
 def test_the_closed_forms_starts_are_each_masss_roots_by_hand() -> None:
@@ -1222,7 +1250,7 @@ def test_the_closed_forms_starts_are_each_masss_roots_by_hand() -> None:
         [[x[:, i, j, None] for j in range(2)] for i in range(2)] for x in (mass, damping, stiffness)
     ]
     starts = _roots(*entries)
-    lam, _, sure, _ = _modes(system.first_order(), mass, damping, stiffness)
+    lam, _, sure, _, _ = _modes(system.first_order(), mass, damping, stiffness)
     assert sure.all()
     want = np.sort_complex(expected)
     assert np.max(np.abs(np.sort_complex(starts) - want) / np.abs(want)) < 1e-5
@@ -1257,7 +1285,7 @@ def test_starts_that_settle_on_one_root_start_again_from_eigvals(monkeypatch) ->
     a[:2, 2:] = np.eye(2)
     a[2:, :2] = -np.linalg.solve(mass[0], stiffness[0])
     a[2:, 2:] = -np.linalg.solve(mass[0], damping[0])
-    lam, _, sure, _ = modes._modes(a[None], mass, damping, stiffness)
+    lam, _, sure, _, _ = modes._modes(a[None], mass, damping, stiffness)
     want = np.sort_complex(np.linalg.eigvals(a))
     assert sure.all()
     assert np.max(np.abs(np.sort_complex(lam[0]) - want) / np.abs(want)) < 1e-12
@@ -1276,7 +1304,7 @@ def test_a_stiff_overdamped_modes_slow_eigenvalue_keeps_its_digits() -> None:
     stiffness = rng.uniform(1e3, 1e4, (m, 1, 1))
     damping = 10 ** rng.uniform(3, 5.5, (m, 1, 1)) * np.sqrt(mass * stiffness)
     first = RampSystem(mass, damping, stiffness, np.zeros((m, 1)), np.ones((m, 1)), 0.0, 1.0, 1.0)
-    lam, _, _, _ = _modes(first.first_order(), mass, damping, stiffness)
+    lam, _, _, _, _ = _modes(first.first_order(), mass, damping, stiffness)
     a, c, k = mass[:, 0, 0], damping[:, 0, 0], stiffness[:, 0, 0]
     q = -(c + np.sqrt(c * c - 4 * a * k)) / 2
     slow = lam[np.arange(m), np.argmin(np.abs(lam), axis=1)]
@@ -1287,7 +1315,7 @@ def test_a_stiff_overdamped_modes_slow_eigenvalue_keeps_its_digits() -> None:
     mass, stiffness = np.eye(2)[None], np.eye(2)[None]
     damping = np.diag([1e7, 1.03e7])[None]
     first = RampSystem(mass, damping, stiffness, np.zeros((1, 2)), np.ones((1, 2)), 0.0, 1.0, 1.0)
-    lam, _, _, _ = _modes(first.first_order(), mass, damping, stiffness)
+    lam, _, _, _, _ = _modes(first.first_order(), mass, damping, stiffness)
     c = np.array([1e7, 1.03e7])
     slow = np.sort(2.0 / -(c + np.sqrt(c * c - 4.0)))
     got = np.sort(lam[0].real[np.argsort(np.abs(lam[0]))[:2]])
@@ -1363,7 +1391,7 @@ def test_each_eigenvector_leaves_both_rows_of_the_pencil_their_rounding() -> Non
     stiffness[0] = [[2520753859994.562, -614.4527758652576], [-614.4527758652576, 14.0036384572427]]
     zero, one = np.zeros((size, 2)), np.ones((size, 2))
     system = RampSystem(mass, damping, stiffness, zero, one, 0.0, 1.0, 1.0)
-    lam, vectors, _, _ = _modes(system.first_order(), mass, damping, stiffness)
+    lam, vectors, _, _, _ = _modes(system.first_order(), mass, damping, stiffness)
     at = lam[:, :, None, None]
     pencil = at * at * mass[:, None] + at * damping[:, None] + stiffness[:, None]
     terms = np.abs(at) ** 2 * np.abs(mass[:, None]) + np.abs(at) * np.abs(damping[:, None])
@@ -1510,7 +1538,7 @@ def test_a_pair_whose_newton_steps_cross_the_axis_keeps_the_upper_one_first() ->
     mass = 2087468686350.6501 * np.eye(2)[None]
     damping = np.array([[[0.0, 0.0], [-20157.818938127668, 26877.091917503556]]])
     stiffness = np.diag([0.00012977046218681413, 8.651364145787609e-05])[None]
-    lam, vectors, _, _ = _modes(lambda rows: None, mass, damping, stiffness)
+    lam, vectors, _, _, _ = _modes(lambda rows: None, mass, damping, stiffness)
     for i in (0, 2):
         assert lam[0, i].imag > 0.0 and lam[0, i + 1] == np.conj(lam[0, i])
         assert np.array_equal(vectors[0, :, i + 1], np.conj(vectors[0, :, i]))
@@ -1518,7 +1546,7 @@ def test_a_pair_whose_newton_steps_cross_the_axis_keeps_the_upper_one_first() ->
     # the flips made it p p p̄ p̄)
     alike = [np.eye(2)[None], 0.2 * np.eye(2)[None], 4.0 * np.eye(2)[None]]
     first = RampSystem(*alike, np.zeros((1, 2)), np.ones((1, 2)), 0.0, 1.0, 1.0).first_order()
-    lam, _, _, _ = _modes(first, *alike)
+    lam, _, _, _, _ = _modes(first, *alike)
     assert lam[0, 0].imag > 0.0 and lam[0, 2].imag > 0.0
     assert lam[0, 1] == np.conj(lam[0, 0]) and lam[0, 3] == np.conj(lam[0, 2])
 
@@ -1576,19 +1604,20 @@ def test_modes_whose_1_norm_condition_passes_1e12_take_the_matrix_exponential(
     # the eigenvalues' distance whether a row's state is a modal sum or e^{Aτ}: a V
     # of condition 3e12 (distinct eigenvalues) takes e^{Aτ}, 3e11 the modes
     from mdcalc.core.periodic import closed
+    from mdcalc.core.periodic.modes import _closest
 
     system = _two_coordinate_block(np.random.default_rng(2), 2)[1]
     real_modes = closed._modes
 
     def modes(first, mass, damping, stiffness):
-        eigenvalues, _, sure, _ = real_modes(first, mass, damping, stiffness)
+        eigenvalues, _, sure, _, closest = real_modes(first, mass, damping, stiffness)
         vectors = np.diag([1.0, 1.0, 1.0, 1.0 / condition]).astype(complex)
         vectors = np.broadcast_to(vectors, (len(mass), 4, 4)).copy()
-        return eigenvalues, vectors, sure, np.linalg.inv(vectors)
+        return eigenvalues, vectors, sure, np.linalg.inv(vectors), closest
 
     monkeypatch.setattr(closed, "_modes", modes)
     block = closed.exact_block(closed.block_of_one(system))
-    assert closed._closest(block.eigenvalues)[0] > closed.MEET
+    assert _closest(block.eigenvalues)[0] > closed.MEET
     assert block.failure[0] == periodic.SOLVED
     assert bool(block.meet[0]) is meets
 

@@ -10,7 +10,7 @@ from typing import Any
 
 import numpy as np
 
-from mdcalc.core.periodic.modes import _closest, _modes
+from mdcalc.core.periodic.modes import _modes
 from mdcalc.core.periodic.peaks import _samples, periodic_maxima
 from mdcalc.core.periodic.system import Observable, RampSystem, Unbounded, Unresolved
 from mdcalc.core.powers import powers
@@ -427,12 +427,12 @@ def exact_block(system: RampSystem, size: int = 1) -> PeriodicBlock:
         """The first-order matrices A of ``rows`` (only where they are needed)."""
         return replace(pencil, mass=mass[rows], damping=c[rows], stiffness=k[rows]).first_order()
 
-    eigenvalues, vectors, sure, inverse = _modes(first, mass, c, k)
+    eigenvalues, vectors, sure, inverse, closest = _modes(first, mass, c, k)
     failure = np.where(broken, UNSEPARATED, SOLVED)
     # Eigenvalues that (nearly) meet -- a mode damped (nearly) critically -- have
     # (nearly) parallel eigenvectors, and the modal sum loses about ε/gap of the state
     # (gap: their distance over their size). Such rows take e^{Aτ} whole, balanced.
-    meet = ~broken & (_closest(eigenvalues) < MEET)
+    meet = ~broken & (closest < MEET)
     # the 1-norm condition, from V⁻¹ (the 2-norm's SVD cost three times as much),
     # which gives the modal coordinates below too: of one or two coordinates from
     # the left eigenvectors (_modes; NaN or inf where V is singular: the row

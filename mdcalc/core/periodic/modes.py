@@ -26,10 +26,11 @@ def _modes(
     mass: np.ndarray,
     damping: np.ndarray,
     stiffness: np.ndarray,
-) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray | None]:
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray | None, np.ndarray]:
     """Eigenvalues and unit eigenvectors of each row's first-order matrix A, complex
-    throughout; whether each row's eigenvalues are sure; and the eigenvectors'
-    inverse V⁻¹ where it comes with them (None: numpy's eig).
+    throughout; whether each row's eigenvalues are sure; the eigenvectors' inverse
+    V⁻¹ where it comes with them (None: numpy's eig); and the eigenvalues' least
+    distance apart relative to their size (:func:`_closest`).
 
     A system of one or two coordinates takes its eigenvalues as the roots of
     det(λ²M + λC + K), a quadratic or a quartic: from its closed form
@@ -59,17 +60,20 @@ def _modes(
     if n > 2:
         eigenvalues, vectors = np.linalg.eig(matrices(slice(None)))
         sure = np.ones(len(mass), bool)
-        return eigenvalues.astype(complex), vectors.astype(complex), sure, None
+        eigenvalues = eigenvalues.astype(complex)
+        return eigenvalues, vectors.astype(complex), sure, None, _closest(eigenvalues)
     m = [[mass[:, i, j, None] for j in range(n)] for i in range(n)]
     c = [[damping[:, i, j, None] for j in range(n)] for i in range(n)]
     k = [[stiffness[:, i, j, None] for j in range(n)] for i in range(n)]
     lam, close = _newton(_roots(m, c, k), m, c, k)
     sure = np.all(close, axis=-1)
-    again = np.flatnonzero(~sure | (_closest(lam) <= SAME_ROOT))
+    closest = _closest(lam)
+    again = np.flatnonzero(~sure | (closest <= SAME_ROOT))
     if again.size:
         part = [[[x[again] for x in row] for row in matrix] for matrix in (m, c, k)]
         lam[again], close = _newton(np.linalg.eigvals(matrices(again)).astype(complex), *part)
         sure[again] = np.all(close, axis=-1)
+        closest[again] = _closest(lam[again])
     # a pair whose Newton steps crossed the axis: the upper one first again (each
     # pair once: a pair repeated, p p̄ p p̄, keeps its order)
     taken = np.zeros(len(lam), dtype=bool)
@@ -78,12 +82,30 @@ def _modes(
         flip = pair & (lam[:, i].imag < 0.0)
         lam[flip, i : i + 2] = lam[flip, i : i + 2][:, ::-1]
         taken = pair
+    # every row's modes in conjugate pairs (an underdamped block): what follows is
+    # taken for the first of each pair, and the partner's is its conjugate (each
+    # product, quotient and size below gives the conjugate's the conjugate result)
+    paired = bool(np.all(lam[:, 1::2] == np.conj(lam[:, ::2])))
+    at = lam[:, ::2] if paired else lam
     with np.errstate(all="ignore"):  # (a zero pencil, two modes alike: they meet)
-        q = _pencil(lam, m, c, k)
-        terms = _terms(lam, m, c, k)
-        sure &= np.all(_uncertainty(lam, q, terms, m, c) <= RESOLVED * np.abs(lam), axis=-1)
-        vectors, inverse = _vectors(lam, q, terms, m, c, k)
-        return lam, vectors, sure, inverse
+        q = _pencil(at, m, c, k)
+        terms = _terms(at, m, c, k)
+        sure &= np.all(_uncertainty(at, q, terms, m, c) <= RESOLVED * np.abs(at), axis=-1)
+        vectors, inverse = _vectors(at, q, terms, m, c, k)
+    if paired:
+        vectors, inverse = _unfold(vectors, -1), _unfold(inverse, 1)
+    return lam, vectors, sure, inverse, closest
+
+
+def _unfold(half: np.ndarray, axis: int) -> np.ndarray:
+    """The first of each conjugate pair along ``axis``, and its partner beside it."""
+    shape = list(half.shape)
+    shape[axis] *= 2
+    both = np.empty(shape, dtype=complex)
+    first, second = [slice(None)] * half.ndim, [slice(None)] * half.ndim
+    first[axis], second[axis] = slice(0, None, 2), slice(1, None, 2)
+    both[tuple(first)], both[tuple(second)] = half, np.conj(half)
+    return both
 
 
 def _closest(eigenvalues: np.ndarray) -> np.ndarray:
