@@ -65,7 +65,12 @@ def _modes(
     m = [[mass[:, i, j, None] for j in range(n)] for i in range(n)]
     c = [[damping[:, i, j, None] for j in range(n)] for i in range(n)]
     k = [[stiffness[:, i, j, None] for j in range(n)] for i in range(n)]
-    lam, close = _newton(_roots(m, c, k), m, c, k)
+    starts = _roots(m, c, k)
+    if _paired(starts):  # (the steps from conjugate starts are conjugate, bit for bit)
+        lam, close = _newton(starts[:, ::2], m, c, k)
+        lam, close = _unfold(lam, -1), np.repeat(close, 2, axis=-1)
+    else:
+        lam, close = _newton(starts, m, c, k)
     sure = np.all(close, axis=-1)
     closest = _closest(lam)
     again = np.flatnonzero(~sure | (closest <= SAME_ROOT))
@@ -85,7 +90,7 @@ def _modes(
     # every row's modes in conjugate pairs (an underdamped block): what follows is
     # taken for the first of each pair, and the partner's is its conjugate (each
     # product, quotient and size below gives the conjugate's the conjugate result)
-    paired = bool(np.all(lam[:, 1::2] == np.conj(lam[:, ::2])))
+    paired = _paired(lam)
     at = lam[:, ::2] if paired else lam
     with np.errstate(all="ignore"):  # (a zero pencil, two modes alike: they meet)
         q = _pencil(at, m, c, k)
@@ -95,6 +100,11 @@ def _modes(
     if paired:
         vectors, inverse = _unfold(vectors, -1), _unfold(inverse, 1)
     return lam, vectors, sure, inverse, closest
+
+
+def _paired(lam: np.ndarray) -> bool:
+    """Whether every row's modes are conjugate pairs, side by side."""
+    return bool(np.all(lam[:, 1::2] == np.conj(lam[:, ::2])))
 
 
 def _unfold(half: np.ndarray, axis: int) -> np.ndarray:
