@@ -146,13 +146,15 @@ class PeriodicBlock:
         samples, resolved = _samples(self.period, self.fastest if fastest is None else fastest)
         found = [(np.full(m, math.nan), np.full(m, math.nan)) for _ in each]
         solved = self.failure == SOLVED
+        paired = _paired_rows(self.eigenvalues[solved & ~self.meet])
         for count in np.unique(samples[solved]):
             for meet in (False, True):
                 group = np.flatnonzero(solved & (samples == count) & (self.meet == meet))
                 parts = max(1, -(-len(group) * int(count) * width // BLOCK_CELLS))
                 for rows in np.array_split(group, min(parts, group.size)) if group.size else []:
                     h = self.period[rows] / count
-                    grid_of = None if meet else _grid_of(self.eigenvalues[rows], h, int(count))
+                    lam = self.eigenvalues[rows]
+                    grid_of = None if meet else _grid_of(lam, h, int(count), paired)
                     for one, (values, times) in zip(each, found, strict=True):
                         if grid_of is None:
                             grid = _flow_grid(one.level[rows], one.drift[rows], one.w_s[rows],
@@ -285,33 +287,42 @@ def _grid(
     exponential every :data:`ANCHOR_POWERS`-th, times powers of e^{λ·RUN·h} between
     (:func:`~mdcalc.core.powers.powers`; an exponential costs some 30 ns here, a
     product 0.5). Round-off grows to about (RUN + ANCHOR_POWERS)·ε of the modal
-    part, far inside the 5 % of the range the search allows for. With j = m·RUN + r,
+    part, far inside the 1e-12 of |f| the search allows for. With j = m·RUN + r,
     each run of a row is one small matrix product: its anchors' factors
     (w·e^{λ·mRUN·h} in real and imaginary parts, the level and drift there, the
     drift's step) by the run's (the powers' parts, 1, r)."""
     return _grid_of(lam, h, count)(level, drift, weights)
 
 
+def _paired_rows(lam: np.ndarray) -> bool:
+    """Whether every row's modes are conjugate pairs side by side, none real."""
+    return bool(np.all(lam[:, 1::2] == np.conj(lam[:, ::2])) & np.all(lam[:, ::2].imag != 0.0))
+
+
 def _grid_of(
-    lam: np.ndarray, h: np.ndarray, count: int
+    lam: np.ndarray, h: np.ndarray, count: int, paired: bool = False
 ) -> Callable[[np.ndarray, np.ndarray, np.ndarray], np.ndarray]:
     """:func:`_grid` in two parts: what the modes alone set (the powers and the
     anchors' exponentials, for any observable of the rows), and the function of
-    the level, drift and weights that finishes it."""
+    the level, drift and weights that finishes it. ``paired``: every row's modes
+    are conjugate pairs side by side (:func:`_paired_rows`; else they are sought)."""
     k, width = lam.shape
     run = min(RUN, count)
     # A conjugate pair of modes (eig gives them side by side) sums to twice the real
     # part of the first: its partner is not evaluated (to the round-off of the
     # partner's weight, which is the first's conjugate up to it)
     pairs = []
-    taken = np.zeros(k, dtype=bool)
-    skipped = np.zeros(width, dtype=bool)
-    for i in range(width - 1):
-        pair = ~taken & (lam[:, i + 1] == np.conj(lam[:, i])) & (lam[:, i].imag != 0.0)
-        pairs.append(pair)
-        taken = pair
-        skipped[i + 1] = bool(np.all(pair))
-    used = np.flatnonzero(~skipped)
+    if paired:
+        used = np.arange(0, width, 2)
+    else:
+        taken = np.zeros(k, dtype=bool)
+        skipped = np.zeros(width, dtype=bool)
+        for i in range(width - 1):
+            pair = ~taken & (lam[:, i + 1] == np.conj(lam[:, i])) & (lam[:, i].imag != 0.0)
+            pairs.append(pair)
+            taken = pair
+            skipped[i + 1] = bool(np.all(pair))
+        used = np.flatnonzero(~skipped)
     lam = lam[:, used]
     u = len(used)
     inner = powers(np.exp(h[:, None] * lam), run)  # (run, k, u): e^{λ·rh}
@@ -326,11 +337,15 @@ def _grid_of(
     runs[:, 2 * u], runs[:, 2 * u + 1] = 1.0, np.arange(run)
 
     def finish(level: np.ndarray, drift: np.ndarray, weights: np.ndarray) -> np.ndarray:
-        weights = weights.copy()
-        for i, pair in enumerate(pairs):
-            weights[:, i] = np.where(pair, 2.0 * weights[:, i], weights[:, i])
-            weights[:, i + 1] = np.where(pair, 0.0, weights[:, i + 1])
-        weighted = anchors * weights[:, used][:, None, :]
+        if paired:
+            weights = 2.0 * weights[:, used]
+        else:
+            weights = weights.copy()
+            for i, pair in enumerate(pairs):
+                weights[:, i] = np.where(pair, 2.0 * weights[:, i], weights[:, i])
+                weights[:, i + 1] = np.where(pair, 0.0, weights[:, i + 1])
+            weights = weights[:, used]
+        weighted = anchors * weights[:, None, :]
         factors = np.empty(start.shape + (2 * u + 2,))
         factors[:, :, :u], factors[:, :, u : 2 * u] = weighted.real, -weighted.imag
         factors[:, :, 2 * u] = level[:, None] + drift[:, None] * start
