@@ -10,7 +10,7 @@ from typing import Any
 
 import numpy as np
 
-from mdcalc.core.periodic.modes import _modes
+from mdcalc.core.periodic.modes import _modes, _paired, _unfold
 from mdcalc.core.periodic.peaks import _samples, periodic_maxima
 from mdcalc.core.periodic.system import Observable, RampSystem, Unbounded, Unresolved
 from mdcalc.core.powers import powers
@@ -183,15 +183,17 @@ class _Observed:
         self.block, self.lam = block, block.eigenvalues
         self.weights = (w[:, None, :] @ block.vectors)[:, 0, :] * block.coefficients
         self.slopes = self.weights * self.lam
-        self.level, self.drift = np.sum(w * block.p0, axis=-1), np.sum(w * block.p1, axis=-1)
+        self.level, self.drift = _real_sum(w * block.p0), _real_sum(w * block.p1)
         # bounds of |w·y''| and |w·y| over a period, from each mode's weight at its
-        # largest, for the search's reach (of the modal rows)
-        with np.errstate(all="ignore"):
-            grow = np.maximum(1.0, np.exp(self.lam.real * block.period[:, None]))
-        amplitude = np.abs(self.weights) * grow
-        self.curvature = np.sum(amplitude * np.abs(self.lam) ** 2, axis=-1)
+        # largest (at τ = 0, but for a mode that grows), for the search's reach (of
+        # the modal rows)
+        amplitude = np.abs(self.weights)
+        if np.any(self.lam.real > 0.0):
+            with np.errstate(all="ignore"):
+                amplitude *= np.maximum(1.0, np.exp(self.lam.real * block.period[:, None]))
+        self.curvature = _real_sum(amplitude * np.abs(self.lam) ** 2)
         self.size = np.abs(self.level) + np.abs(self.drift) * block.period
-        self.size += np.sum(amplitude, axis=-1)
+        self.size += _real_sum(amplitude)
         # the rows that meet observe w·S·e^{Bτ}·d₀ and its rate w·S·B·e^{Bτ}·d₀
         meet = np.flatnonzero(block.meet)
         self.w_s, self.w_a = np.zeros((m, width)), np.zeros((m, width))
@@ -259,8 +261,9 @@ class _Observed:
 
 
 def _real_sum(modal: np.ndarray) -> np.ndarray:
-    """Re Σ over the last axis (the modes, a handful), term by term in index order:
-    numpy's reduction along so short an axis costs some six times the adds."""
+    """Re Σ over the last axis (the modes, a handful; or of a real array), term by
+    term in index order: numpy's reduction along so short an axis costs some six
+    times the adds."""
     total = modal[..., 0].real.copy()
     for j in range(1, modal.shape[-1]):
         total += modal[..., j].real
@@ -443,6 +446,7 @@ def exact_block(system: RampSystem, size: int = 1) -> PeriodicBlock:
         return replace(pencil, mass=mass[rows], damping=c[rows], stiffness=k[rows]).first_order()
 
     eigenvalues, vectors, sure, inverse, closest = _modes(first, mass, c, k)
+    paired = _paired(eigenvalues)
     failure = np.where(broken, UNSEPARATED, SOLVED)
     # Eigenvalues that (nearly) meet -- a mode damped (nearly) critically -- have
     # (nearly) parallel eigenvectors, and the modal sum loses about ε/gap of the state
@@ -458,7 +462,9 @@ def exact_block(system: RampSystem, size: int = 1) -> PeriodicBlock:
         plain = meet | ~np.all(np.isfinite(vectors), axis=(1, 2))
         inverse = _inverse(np.where(plain[:, None, None], np.eye(2 * n), vectors))
     with np.errstate(all="ignore"):
-        condition = np.linalg.norm(vectors, 1, axis=(1, 2)) * np.linalg.norm(
+        # (a conjugate pair's columns of V have the same sizes: one of each will do)
+        columns = vectors[:, :, ::2] if paired else vectors
+        condition = np.linalg.norm(columns, 1, axis=(1, 2)) * np.linalg.norm(
             inverse, 1, axis=(1, 2)
         )
         meet |= ~broken & ~(condition <= 1e12)
@@ -468,7 +474,11 @@ def exact_block(system: RampSystem, size: int = 1) -> PeriodicBlock:
     failure[(failure == SOLVED) & (slow < 1.5e-4)] = AS_GOOD_AS_FREE  # ε/(λT)² > 1e-8
     # 1 - e^{λT} by expm1: a mode much slower than the load (λT → 0) has a large
     # but finite periodic part; only e^{λT} = 1 with λT ≠ 0 (λT = 2πim) is a resonance
-    gap = -np.expm1(eigenvalues * t[:, None])
+    gap = (
+        -np.expm1(eigenvalues * t[:, None])
+        if not paired
+        else _unfold(-np.expm1(eigenvalues[:, ::2] * t[:, None]), -1)
+    )  # (of a conjugate pair, the conjugate: bit for bit)
     failure[(failure == SOLVED) & np.any(_resonant(gap, eigenvalues * t[:, None]), axis=-1)] = (
         RESONANT
     )
