@@ -518,3 +518,40 @@ def test_an_ode_kernel_in_tiles_gives_each_row_its_own_numbers(
     assert value is not None
     column = value * np.random.default_rng(6).uniform(0.9, 1.0, rows)
     _tiled_and_whole(monkeypatch, problem, case, {key: column}, tile)
+
+
+def _columns(block):
+    """A kernel's answer with columns of one value (one of them NaN), one of 0 and
+    -0 (two values bit for bit), and one that varies."""
+    n = len(block)
+    return {
+        "same": np.full(n, 0.1 * block[0, 0]),
+        "nan": np.full(n, np.nan),
+        "zeros": np.where(np.arange(n) % 2 == 0, 0.0, -0.0),
+        "varies": block[:, 0] / 3.0,
+        "declined": np.zeros(n, dtype=bool),
+    }
+
+
+def test_a_pools_answers_come_back_compact_and_bit_for_bit():
+    # Compact: a column of one value, bit for bit, crosses from a pool's process as
+    # that value and is filled out as it is unpickled; 0 and -0 are two values;
+    # the answers equal the kernel's run here, bit for bit, and here Compact gives
+    # the answer as it is
+    import pickle
+
+    from mdcalc.runs.kernel import Compact, _Filled
+    from mdcalc.runs.pool import pool_map
+
+    blocks = [np.arange(5000.0)[:, None] + k for k in range(4)]
+    answer = _columns(blocks[0])
+    packed = {key: _Filled.of(values) for key, values in answer.items()}
+    assert {k for k, v in packed.items() if isinstance(v, _Filled)} == {"same", "nan", "declined"}
+    assert len(pickle.dumps(packed)) < 0.5 * len(pickle.dumps(answer))
+    assert Compact(_columns)(blocks[0]).keys() == answer.keys()
+    assert all(isinstance(v, np.ndarray) for v in Compact(_columns)(blocks[0]).values())
+    for got, block in zip(pool_map(Compact(_columns), blocks, 2), blocks, strict=True):
+        want = _columns(block)
+        for key, values in want.items():
+            assert type(got[key]) is np.ndarray and got[key].dtype == values.dtype
+            assert got[key].tobytes() == values.tobytes()

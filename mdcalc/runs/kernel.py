@@ -205,7 +205,7 @@ def kernel_parts(run: KernelChunk, blocks: Sequence[Any], mapper: Any) -> tuple[
 
     rest = [head[2 * PROBE :], *blocks[1:]]
     pieces = _pieces(np.concatenate(rest), mapper.jobs)  # a piece may span two blocks
-    answers = iter(mapper(run, pieces, on_error=lost_block))
+    answers = iter(mapper(Compact(run), pieces, on_error=lost_block))
     flow = _Fragments(answers, [len(p) for p in pieces])
 
     def joined() -> Iterable[Any]:
@@ -222,6 +222,51 @@ def kernel_parts(run: KernelChunk, blocks: Sequence[Any], mapper: Any) -> tuple[
             pass
 
     return joined(), mapper.description
+
+
+class Compact:
+    """A kernel chunk whose answer goes back from a pool's process compactly: a
+    column of one value, bit for bit (most of a variator's 59 keys do not change
+    with its drawn inputs), as that value, filled out again as the parent unpickles
+    it (12 MB of a 25 000-row piece took the process some 30 ms to hand over, 7 %
+    of its time). In the process that asks (a pool of one) the answer is as it is."""
+
+    def __init__(self, run: KernelChunk) -> None:
+        self.run = run
+
+    def __call__(self, block: Any) -> Any:
+        import multiprocessing
+
+        answer = self.run(block)
+        if not isinstance(answer, dict) or multiprocessing.parent_process() is None:
+            return answer
+        return {key: _Filled.of(values) for key, values in answer.items()}
+
+
+class _Filled:
+    """``size`` copies of ``value``: unpickled, the array np.full makes of them."""
+
+    def __init__(self, size: int, value: Any) -> None:
+        self.size, self.value = size, value
+
+    def __reduce__(self) -> tuple[Any, tuple[Any, ...]]:
+        import numpy as np
+
+        return np.full, (self.size, self.value, self.value.dtype)
+
+    @staticmethod
+    def of(values: Any) -> Any:
+        """``values`` as a _Filled where they are one value bit for bit (-0 is not
+        0, and a NaN only its own payload)."""
+        import numpy as np
+
+        if not isinstance(values, np.ndarray) or values.ndim != 1 or values.size < 2:
+            return values
+        if not values.flags.c_contiguous:
+            return values
+        raw = values.view(np.int64 if values.itemsize == 8 else np.uint8)
+        raw = raw.reshape(values.size, -1)
+        return _Filled(values.size, values[0]) if np.all(raw == raw[0]) else values
 
 
 class _Fragments:
