@@ -270,6 +270,20 @@ def _real_sum(modal: np.ndarray) -> np.ndarray:
     return total
 
 
+def _one_norm(matrices: np.ndarray) -> np.ndarray:
+    """The 1-norm (largest column sum of sizes) of each of a stack of small
+    matrices: numpy's norm, sum for sum, at a quarter of its cost (its reductions
+    over axes of two to four)."""
+    sizes = np.abs(matrices)
+    sums = sizes[:, 0, :].copy()
+    for i in range(1, sizes.shape[1]):
+        sums += sizes[:, i, :]
+    largest = sums[:, 0].copy()
+    for j in range(1, sums.shape[1]):
+        np.maximum(largest, sums[:, j], out=largest)
+    return largest
+
+
 #: Samples a run of powers of e^{λh} covers between exact exponentials.
 RUN = 32
 #: Anchors between two exact exponentials (powers of e^{λ·RUN·h} between).
@@ -464,9 +478,7 @@ def exact_block(system: RampSystem, size: int = 1) -> PeriodicBlock:
     with np.errstate(all="ignore"):
         # (a conjugate pair's columns of V have the same sizes: one of each will do)
         columns = vectors[:, :, ::2] if paired else vectors
-        condition = np.linalg.norm(columns, 1, axis=(1, 2)) * np.linalg.norm(
-            inverse, 1, axis=(1, 2)
-        )
+        condition = _one_norm(columns) * _one_norm(inverse)
         meet |= ~broken & ~(condition <= 1e12)
     # The particular solution holds K⁻¹: a mode much slower than the load (|λ|T ≪ 1)
     # makes it and the modal part cancel, losing about ε/(λT)² of the result.
