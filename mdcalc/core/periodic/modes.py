@@ -121,13 +121,11 @@ def _unfold(half: np.ndarray, axis: int) -> np.ndarray:
 def _closest(eigenvalues: np.ndarray) -> np.ndarray:
     """The least distance between two eigenvalues of each row, relative to the
     larger of the two (1 where a row has one)."""
-    lam = eigenvalues[:, :, None]
-    other = eigenvalues[:, None, :]
+    first, second = np.triu_indices(eigenvalues.shape[-1], 1)  # each pair once
+    lam, other = eigenvalues[:, first], eigenvalues[:, second]
     with np.errstate(all="ignore"):
         ratio = np.abs(lam - other) / np.maximum(np.abs(lam), np.abs(other))
-    width = eigenvalues.shape[-1]
-    ratio = np.where(np.eye(width, dtype=bool), 1.0, np.where(np.isnan(ratio), 0.0, ratio))
-    return np.min(ratio, axis=(1, 2), initial=1.0)
+    return np.min(np.where(np.isnan(ratio), 0.0, ratio), axis=-1, initial=1.0)
 
 
 Entries = list[list[np.ndarray]]  # a 2×2 (or 1×1) matrix by its entries, (m, 1) each
