@@ -1191,8 +1191,9 @@ def test_an_underdamped_blocks_modes_taken_by_halves_are_those_taken_whole(
 ) -> None:
     # every row's modes in conjugate pairs: the vectors, their inverse and whether
     # each row is sure are taken for the first of each pair and conjugated for its
-    # partner, and are those of every mode taken alone, bit for bit (400 random
-    # lightly damped systems, stiffnesses over ten decades)
+    # partner, and are those of every mode taken alone, equal as numbers (bit for
+    # bit but for the sign of a zero part, of one coordinate; 400 random lightly
+    # damped systems, stiffnesses over ten decades)
     from mdcalc.core.periodic import modes
 
     n, m = coordinates, 400
@@ -1740,3 +1741,34 @@ def test_newton_steps_that_find_the_rate_rising_leave_the_peak_to_the_brackets()
     assert values[0] == pytest.approx(1.0, abs=1e-15)
     assert times[0] == pytest.approx(0.61803, abs=1e-12 / 256)
     assert calls["rate"] > calls["bend"] + 3  # the brackets' ends and steps
+
+
+def test_the_searchs_allowance_covers_long_grids_rounding() -> None:
+    # a long grid's samples round with the phase λτ of their exponentials (ε·|λ|T of
+    # the modal part), so the search's allowance is 1e-12 of a size scaled by
+    # 1 + |λ|T/1000: on the 8 rows with the most samples (655 360 to 1 048 576, |λ|T
+    # 2-5·10⁵) of 400 lightly damped random drives, every coordinate's last 4096
+    # samples lie within it of the state there; 1e-12 of |w·y|'s bound alone would
+    # not hold them (4·10⁻¹¹ of it seen; a review's case 7·10⁻¹²)
+    from mdcalc.core.periodic import closed
+
+    m = 400
+    _, damping, _, system = _random_pencils(np.random.default_rng(5), 2, m)
+    system = replace(system, damping=1e-4 * damping, constant=np.tile([0.0, 100.0], (m, 1)),
+                     shape=np.tile([1.0, 2.0], (m, 1)), start=-50.0, slope=4e3)  # fmt: skip
+    block = periodic.exact_block(system, m)
+    samples, _ = periodic.peaks._samples(block.period, block.fastest)
+    unscaled = []
+    for r in np.argsort(samples)[::-1][:8]:
+        assert block.failure[r] == periodic.SOLVED and not block.meet[r]
+        count, rows = int(samples[r]), np.array([r])
+        h, last = block.period[r] / count, np.arange(count - 4096, count)
+        grid_of = closed._grid_of(block.eigenvalues[rows], np.array([h]), count)
+        for w in np.eye(4):
+            seen = closed._Observed(block, w)
+            grid = grid_of(seen.level[rows], seen.drift[rows], seen.weights[rows])[0, last]
+            error = np.max(np.abs(grid - seen.observe(rows, (last * h)[None])[0]))
+            assert error <= 1e-12 * seen.size[r]
+            growth = 1.0 + np.max(np.abs(block.eigenvalues[r])) * block.period[r] / 1000.0
+            unscaled.append(error / (seen.size[r] / growth))
+    assert max(unscaled) > 1e-11

@@ -521,8 +521,8 @@ def test_an_ode_kernel_in_tiles_gives_each_row_its_own_numbers(
 
 
 def _columns(block):
-    """A kernel's answer with columns of one value (one of them NaN), one of 0 and
-    -0 (two values bit for bit), and one that varies."""
+    """A kernel's answer with columns of one value (one of them NaN, one big-endian),
+    one of 0 and -0 (two values bit for bit), and one that varies."""
     n = len(block)
     return {
         "same": np.full(n, 0.1 * block[0, 0]),
@@ -530,6 +530,7 @@ def _columns(block):
         "zeros": np.where(np.arange(n) % 2 == 0, 0.0, -0.0),
         "varies": block[:, 0] / 3.0,
         "declined": np.zeros(n, dtype=bool),
+        "big_endian": np.full(n, 2.5, dtype=">f8"),
     }
 
 
@@ -546,7 +547,12 @@ def test_a_pools_answers_come_back_compact_and_bit_for_bit():
     blocks = [np.arange(5000.0)[:, None] + k for k in range(4)]
     answer = _columns(blocks[0])
     packed = {key: _Filled.of(values) for key, values in answer.items()}
-    assert {k for k, v in packed.items() if isinstance(v, _Filled)} == {"same", "nan", "declined"}
+    assert {k for k, v in packed.items() if isinstance(v, _Filled)} == {
+        "same",
+        "nan",
+        "declined",
+        "big_endian",
+    }
     assert len(pickle.dumps(packed)) < 0.5 * len(pickle.dumps(answer))
     assert Compact(_columns)(blocks[0]).keys() == answer.keys()
     assert all(isinstance(v, np.ndarray) for v in Compact(_columns)(blocks[0]).values())

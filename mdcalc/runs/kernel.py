@@ -246,13 +246,13 @@ class Compact:
 class _Filled:
     """``size`` copies of ``value``: unpickled, the array np.full makes of them."""
 
-    def __init__(self, size: int, value: Any) -> None:
-        self.size, self.value = size, value
+    def __init__(self, size: int, value: Any, dtype: Any) -> None:
+        self.size, self.value, self.dtype = size, value, dtype
 
     def __reduce__(self) -> tuple[Any, tuple[Any, ...]]:
         import numpy as np
 
-        return np.full, (self.size, self.value, self.value.dtype)
+        return np.full, (self.size, self.value, self.dtype)
 
     @staticmethod
     def of(values: Any) -> Any:
@@ -262,11 +262,11 @@ class _Filled:
 
         if not isinstance(values, np.ndarray) or values.ndim != 1 or values.size < 2:
             return values
-        if not values.flags.c_contiguous:
-            return values
+        if not values.flags.c_contiguous or values.dtype.kind not in "biufc":
+            return values  # (numbers only: a string's width is its array's)
         raw = values.view(np.int64 if values.itemsize == 8 else np.uint8)
         raw = raw.reshape(values.size, -1)
-        return _Filled(values.size, values[0]) if np.all(raw == raw[0]) else values
+        return _Filled(values.size, values[0], values.dtype) if np.all(raw == raw[0]) else values
 
 
 class _Fragments:

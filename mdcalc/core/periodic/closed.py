@@ -194,6 +194,11 @@ class _Observed:
         self.curvature = _real_sum(amplitude * np.abs(self.lam) ** 2)
         self.size = np.abs(self.level) + np.abs(self.drift) * block.period
         self.size += _real_sum(amplitude)
+        # ... and the scale of its samples' rounding, which grows with the phase λτ
+        # its exponentials round (ε·|λ|T of the modal part: a review's 4.6·10⁵-sample
+        # row was 7·10⁻¹² of |w·y| off), for the search's allowance of 1e-12 of it
+        fastest = np.max(np.abs(self.lam), axis=-1, initial=0.0)
+        self.size *= 1.0 + fastest * block.period / 1000.0
         # the rows that meet observe w·S·e^{Bτ}·d₀ and its rate w·S·B·e^{Bτ}·d₀
         meet = np.flatnonzero(block.meet)
         self.w_s, self.w_a = np.zeros((m, width)), np.zeros((m, width))
@@ -303,8 +308,9 @@ def _grid(
     product per sample, not an exponential); the anchors themselves an exact
     exponential every :data:`ANCHOR_POWERS`-th, times powers of e^{λ·RUN·h} between
     (:func:`~mdcalc.core.powers.powers`; an exponential costs some 30 ns here, a
-    product 0.5). Round-off grows to about (RUN + ANCHOR_POWERS)·ε of the modal
-    part, far inside the 1e-12 of |f| the search allows for. With j = m·RUN + r,
+    product 0.5). Round-off grows to about (RUN + ANCHOR_POWERS + |λ|·jh)·ε of the
+    modal part (the last the rounding of the phase, as in any exponential of λ·jh),
+    inside the search's allowance (:class:`_Observed`'s size). With j = m·RUN + r,
     each run of a row is one small matrix product: its anchors' factors
     (w·e^{λ·mRUN·h} in real and imaginary parts, the level and drift there, the
     drift's step) by the run's (the powers' parts, 1, r)."""

@@ -89,7 +89,9 @@ def _modes(
         taken = pair
     # every row's modes in conjugate pairs (an underdamped block): what follows is
     # taken for the first of each pair, and the partner's is its conjugate (each
-    # product, quotient and size below gives the conjugate's the conjugate result)
+    # product, quotient and size below gives the conjugate's the conjugate result,
+    # bit for bit but for the sign of a zero part: a real times a complex number
+    # is a complex product, whose 0·imaginary part keeps its sign)
     paired = _paired(lam)
     at = lam[:, ::2] if paired else lam
     with np.errstate(all="ignore"):  # (a zero pencil, two modes alike: they meet)

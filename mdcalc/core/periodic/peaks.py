@@ -111,11 +111,11 @@ def periodic_maxima(
     period is found by Newton's steps from the parabola through its three samples
     (:func:`_newton`), where they settle; the others as above.
 
-    Within reach: ``bounds``, each row's bound of |f''| over the period and of |f|,
-    give it exactly. A peak lies at most half a sample step from a sample, and
-    above it by at most |f''|·h²/8, so a peak beside samples lower than the best by
-    more than that (and the grid's rounding: 1e-12 of |f|, some 70 times it) cannot
-    win. Without
+    Within reach: ``bounds``, each row's bound of |f''| over the period and a size
+    (of |f|, scaled to its samples' rounding), give it exactly. A peak lies at most
+    half a sample step from a sample, and above it by at most |f''|·h²/8, so a peak
+    beside samples lower than the best by more than that (and 1e-12 of the size,
+    for the samples' rounding) cannot win. Without
     them: with 16 samples per period of the fastest mode a sample lies at most
     1 - cos(π/16) ≈ 2 % of that mode's amplitude below its peak, and peaks more
     than 5 % of the sampled range below the best are taken not to win."""
