@@ -3,6 +3,7 @@ study's samples): modes, or e^{Aτ} whole where eigenvalues meet; its maxima."""
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
@@ -103,9 +104,10 @@ class PeriodicBlock:
     origin: np.ndarray  # d₀, (m, 2n)
     basis: np.ndarray  # S, (m, 2n, 2n)
 
-    @property
+    @functools.cached_property
     def fastest(self) -> np.ndarray:
-        """Largest |λ| of each row [1/s]."""
+        """Largest |λ| of each row [1/s] (taken once: the maxima and every observable
+        of them ask)."""
         return np.max(np.abs(self.eigenvalues), axis=-1)
 
     def row(self, i: int) -> Periodic:
@@ -197,8 +199,7 @@ class _Observed:
         # ... and the scale of its samples' rounding, which grows with the phase λτ
         # its exponentials round (ε·|λ|T of the modal part: a review's 4.6·10⁵-sample
         # row was 7·10⁻¹² of |w·y| off), for the search's allowance of 1e-12 of it
-        fastest = np.max(np.abs(self.lam), axis=-1, initial=0.0)
-        self.size *= 1.0 + fastest * block.period / 1000.0
+        self.size *= 1.0 + block.fastest * block.period / 1000.0
         # the rows that meet observe w·S·e^{Bτ}·d₀ and its rate w·S·B·e^{Bτ}·d₀
         meet = np.flatnonzero(block.meet)
         self.w_s, self.w_a = np.zeros((m, width)), np.zeros((m, width))
