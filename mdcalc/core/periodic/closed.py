@@ -11,7 +11,7 @@ from typing import Any
 
 import numpy as np
 
-from mdcalc.core.periodic.modes import _modes, _paired, _unfold
+from mdcalc.core.periodic.modes import _modes, _paired, _pairs, _unfold
 from mdcalc.core.periodic.peaks import _samples, periodic_maxima
 from mdcalc.core.periodic.system import Observable, RampSystem, Unbounded, Unresolved
 from mdcalc.core.powers import powers
@@ -148,7 +148,7 @@ class PeriodicBlock:
         samples, resolved = _samples(self.period, self.fastest if fastest is None else fastest)
         found = [(np.full(m, math.nan), np.full(m, math.nan)) for _ in each]
         solved = self.failure == SOLVED
-        paired = _paired_rows(self.eigenvalues[solved & ~self.meet])
+        paired = _paired(self.eigenvalues[solved & ~self.meet], none_real=True)
         for count in np.unique(samples[solved]):
             for meet in (False, True):
                 group = np.flatnonzero(solved & (samples == count) & (self.meet == meet))
@@ -210,18 +210,14 @@ class _Observed:
         # partner's exponential is the first's conjugate, bit for bit but for the
         # sign of a zero imaginary part at τ = 0 (τ·λ̄ is the conjugate of τ·λ, and
         # so is its exp; the real parts of the sums the same), and is not taken again
-        lam, modes = self.lam, self.lam.shape[1]
-        self.paired = modes % 2 == 0 and bool(np.all(lam[:, 1::2] == np.conj(lam[:, ::2])))
+        self.paired = _paired(self.lam)
 
     def _exp(self, tau: np.ndarray, lam: np.ndarray) -> np.ndarray:
         """e^{λτ} of every mode, (…, modes), at times ``tau`` (…) for ``lam``
         broadcast against them."""
         if not self.paired:
             return np.exp(tau[..., None] * lam)
-        half = np.exp(tau[..., None] * lam[..., ::2])
-        both = np.empty(half.shape[:-1] + (2 * half.shape[-1],), dtype=complex)
-        both[..., ::2], both[..., 1::2] = half, np.conj(half)
-        return both
+        return _unfold(np.exp(tau[..., None] * lam[..., ::2]), -1)
 
     # The exact value and rate take every mode with its own weight: a conjugate
     # pair's second weight is the first's conjugate only to the round-off of the
@@ -318,35 +314,23 @@ def _grid(
     return _grid_of(lam, h, count)(level, drift, weights)
 
 
-def _paired_rows(lam: np.ndarray) -> bool:
-    """Whether every row's modes are conjugate pairs side by side, none real."""
-    return bool(np.all(lam[:, 1::2] == np.conj(lam[:, ::2])) & np.all(lam[:, ::2].imag != 0.0))
-
-
 def _grid_of(
     lam: np.ndarray, h: np.ndarray, count: int, paired: bool = False
 ) -> Callable[[np.ndarray, np.ndarray, np.ndarray], np.ndarray]:
     """:func:`_grid` in two parts: what the modes alone set (the powers and the
     anchors' exponentials, for any observable of the rows), and the function of
     the level, drift and weights that finishes it. ``paired``: every row's modes
-    are conjugate pairs side by side (:func:`_paired_rows`; else they are sought)."""
+    are conjugate pairs side by side, none real (else they are sought)."""
     k, width = lam.shape
     run = min(RUN, count)
     # A conjugate pair of modes (eig gives them side by side) sums to twice the real
     # part of the first: its partner is not evaluated (to the round-off of the
     # partner's weight, which is the first's conjugate up to it)
-    pairs = []
+    pairs = [] if paired else _pairs(lam)
     if paired:
         used = np.arange(0, width, 2)
-    else:
-        taken = np.zeros(k, dtype=bool)
-        skipped = np.zeros(width, dtype=bool)
-        for i in range(width - 1):
-            pair = ~taken & (lam[:, i + 1] == np.conj(lam[:, i])) & (lam[:, i].imag != 0.0)
-            pairs.append(pair)
-            taken = pair
-            skipped[i + 1] = bool(np.all(pair))
-        used = np.flatnonzero(~skipped)
+    else:  # (a mode whose pair is in every row is skipped)
+        used = np.flatnonzero([True] + [not np.all(pair) for pair in pairs])
     lam = lam[:, used]
     u = len(used)
     inner = powers(np.exp(h[:, None] * lam), run)  # (run, k, u): e^{λ·rh}

@@ -81,12 +81,9 @@ def _modes(
         closest[again] = _closest(lam[again])
     # a pair whose Newton steps crossed the axis: the upper one first again (each
     # pair once: a pair repeated, p p̄ p p̄, keeps its order)
-    taken = np.zeros(len(lam), dtype=bool)
-    for i in range(2 * n - 1):
-        pair = ~taken & (lam[:, i + 1] == np.conj(lam[:, i])) & (lam[:, i].imag != 0.0)
+    for i, pair in enumerate(_pairs(lam)):
         flip = pair & (lam[:, i].imag < 0.0)
         lam[flip, i : i + 2] = lam[flip, i : i + 2][:, ::-1]
-        taken = pair
     # every row's modes in conjugate pairs (an underdamped block): what follows is
     # taken for the first of each pair, and the partner's is its conjugate (each
     # product, quotient and size below gives the conjugate's the conjugate result,
@@ -104,9 +101,23 @@ def _modes(
     return lam, vectors, sure, inverse, closest
 
 
-def _paired(lam: np.ndarray) -> bool:
-    """Whether every row's modes are conjugate pairs, side by side."""
-    return bool(np.all(lam[:, 1::2] == np.conj(lam[:, ::2])))
+def _pairs(lam: np.ndarray) -> list[np.ndarray]:
+    """For each mode i but the last, the rows where it and mode i + 1 are a conjugate
+    pair (not real; each mode in one pair at most, the first it can be in)."""
+    pairs, taken = [], np.zeros(len(lam), dtype=bool)
+    for i in range(lam.shape[-1] - 1):
+        taken = ~taken & (lam[:, i + 1] == np.conj(lam[:, i])) & (lam[:, i].imag != 0.0)
+        pairs.append(taken)
+    return pairs
+
+
+def _paired(lam: np.ndarray, none_real: bool = False) -> bool:
+    """Whether every row's modes are conjugate pairs, side by side (and, with
+    ``none_real``, none of them real)."""
+    if lam.shape[-1] % 2:
+        return False
+    paired = bool(np.all(lam[:, 1::2] == np.conj(lam[:, ::2])))
+    return paired and (not none_real or bool(np.all(lam[:, ::2].imag != 0.0)))
 
 
 def _unfold(half: np.ndarray, axis: int) -> np.ndarray:

@@ -329,23 +329,16 @@ def _newton(
     low, high = (where[inner] - 1) * h, (where[inner] + 1) * h
     who = rows[owner[inner]]  # (one array for the first steps: a sampler may keep its rows)
     bad = ~np.isfinite(tau)
-    with np.errstate(all="ignore"):
-        for _ in range(TOGETHER):  # (most settle in these)
-            g, curve = bend(who, tau[:, None])
-            move = -g[:, 0] / curve[:, 0]
-            tau = tau + move
-            bad |= ~((curve[:, 0] < 0.0) & (tau >= low) & (tau <= high))  # (NaN: bad)
+    for _ in range(TOGETHER):  # (most settle in these)
+        tau, move, refused = _step(bend, who, tau, low, high)
+        bad |= refused
     done = np.full(len(inner), np.nan)
     settled = ~bad & (np.abs(move) <= 1e-7 * h)
     done[settled] = tau[settled]
     active = np.flatnonzero(~bad & ~settled)
     tau, low, high, h = tau[active], low[active], high[active], h[active]
     for _ in range(NEWTON_STEPS - TOGETHER if active.size else 0):
-        g, curve = bend(rows[owner[inner[active]]], tau[:, None])
-        with np.errstate(all="ignore"):
-            move = -g[:, 0] / curve[:, 0]
-        tau = tau + move
-        bad = ~((curve[:, 0] < 0.0) & (tau >= low) & (tau <= high))  # (NaN: bad)
+        tau, move, bad = _step(bend, rows[owner[inner[active]]], tau, low, high)
         settled = ~bad & (np.abs(move) <= 1e-7 * h)
         done[active[settled]] = tau[settled]
         go = ~bad & ~settled
@@ -356,3 +349,20 @@ def _newton(
     left_out = np.ones(len(owner), dtype=bool)
     left_out[inner[ok]] = False
     return owner[inner[ok]], done[ok], left_out
+
+
+def _step(
+    bend: Callable[[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]],
+    who: np.ndarray,
+    tau: np.ndarray,
+    low: np.ndarray,
+    high: np.ndarray,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """One Newton step on the rate at times ``tau`` of the rows ``who``: the new
+    times, the steps, and where a step is refused (the curvature not below 0, the
+    new time outside [low, high], or NaN)."""
+    with np.errstate(all="ignore"):
+        g, curve = bend(who, tau[:, None])
+        move = -g[:, 0] / curve[:, 0]
+    tau = tau + move
+    return tau, move, ~((curve[:, 0] < 0.0) & (tau >= low) & (tau <= high))
